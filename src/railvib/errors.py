@@ -1,0 +1,39 @@
+"""Exception and warning classes of railvib.
+
+Every error a user can trigger through bad input is a :class:`CaseError`, whose
+message names the field, the value received and what is allowed, on one line.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["CaseError", "RailvibError", "SolverWarning"]
+
+
+class RailvibError(Exception):
+    """Base class of every railvib error."""
+
+
+class CaseError(RailvibError, ValueError):
+    """Invalid input: names the field, the value and what is allowed.
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the offending field, e.g. ``"vehicle.carbody_mass"``.
+    value : Any
+        The value received.
+    allowed : str
+        What would have been accepted, with units, e.g. ``"> 0 (kg)"``.
+    """
+
+    def __init__(self, field: str, value: Any, allowed: str) -> None:
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{field} = {value!r}: {allowed}")
+
+
+class SolverWarning(RuntimeWarning):
+    """A numerical result may have lost accuracy (e.g. at the pinned-pinned frequency)."""

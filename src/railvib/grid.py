@@ -1,0 +1,85 @@
+"""The frequency grid: one immutable, validated array of frequencies in Hz."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.errors import CaseError
+
+__all__ = ["FrequencyGrid"]
+
+
+@dataclass(frozen=True, eq=False)
+class FrequencyGrid:
+    """Strictly increasing, positive frequencies in Hz.
+
+    Build it with :meth:`linear`, :meth:`logarithmic` or :meth:`from_array`.
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        Frequencies in Hz, 1-D, strictly increasing, all > 0.
+
+    Examples
+    --------
+    >>> grid = FrequencyGrid.linear(0.5, 100.0, step=0.5)
+    >>> grid.f[:3]
+    array([0.5, 1. , 1.5])
+    """
+
+    f: NDArray[np.float64] = field(repr=False)
+
+    def __post_init__(self) -> None:
+        f = np.asarray(self.f, dtype=float)
+        if f.ndim != 1 or f.size == 0:
+            raise CaseError("frequency", f"array of shape {f.shape}", "a non-empty 1-D array (Hz)")
+        if not np.all(np.isfinite(f)) or np.any(f <= 0.0):
+            bad = f[~(np.isfinite(f) & (f > 0))][0]
+            raise CaseError("frequency", float(bad), "every frequency must be finite and > 0 (Hz)")
+        if f.size > 1 and np.any(np.diff(f) <= 0.0):
+            raise CaseError("frequency", "non-increasing values", "strictly increasing (Hz)")
+        f.setflags(write=False)
+        object.__setattr__(self, "f", f)
+
+    @classmethod
+    def from_array(cls, f: ArrayLike) -> FrequencyGrid:
+        """Grid from explicit frequencies in Hz."""
+        return cls(np.asarray(f, dtype=float))
+
+    @classmethod
+    def linear(cls, f_min: float, f_max: float, step: float) -> FrequencyGrid:
+        """Evenly spaced grid from `f_min` to `f_max` (inclusive where it lands) in Hz."""
+        _check_band(f_min, f_max)
+        if not step > 0:
+            raise CaseError("frequency.step", step, "must be > 0 (Hz)")
+        n = int(np.floor((f_max - f_min) / step + 1e-9)) + 1
+        return cls(f_min + step * np.arange(n))
+
+    @classmethod
+    def logarithmic(cls, f_min: float, f_max: float, n: int) -> FrequencyGrid:
+        """`n` log-spaced frequencies from `f_min` to `f_max` in Hz."""
+        _check_band(f_min, f_max)
+        if int(n) < 2:
+            raise CaseError("frequency.n", n, "must be >= 2")
+        return cls(np.geomspace(f_min, f_max, int(n)))
+
+    @property
+    def omega(self) -> NDArray[np.float64]:
+        """Circular frequencies in rad/s."""
+        return 2.0 * np.pi * self.f
+
+    def __len__(self) -> int:
+        return int(self.f.size)
+
+    def __repr__(self) -> str:
+        return f"FrequencyGrid({self.f[0]:g}–{self.f[-1]:g} Hz, n={self.f.size})"
+
+
+def _check_band(f_min: float, f_max: float) -> None:
+    if not (np.isfinite(f_min) and f_min > 0):
+        raise CaseError("frequency.f_min", f_min, "must be > 0 (Hz)")
+    if not (np.isfinite(f_max) and f_max > f_min):
+        raise CaseError("frequency.f_max", f_max, f"must be > f_min = {f_min} (Hz)")

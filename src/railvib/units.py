@@ -1,0 +1,35 @@
+"""Unit strings and the few conversions done at the edges (case files, plots).
+
+Everything inside railvib is SI: Hz, m, s, kg, N, N/m, N s/m, K.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "ACCELERATION_PSD",
+    "DISPLACEMENT_PSD",
+    "FORCE_PSD",
+    "celsius_to_kelvin",
+    "kelvin_to_celsius",
+    "kmh_to_ms",
+]
+
+ACCELERATION_PSD = "(m/s^2)^2/Hz"
+DISPLACEMENT_PSD = "m^2/Hz"
+FORCE_PSD = "N^2/Hz"
+ZERO_CELSIUS_K = 273.15
+
+
+def kmh_to_ms(speed_kmh: float) -> float:
+    """Convert km/h to m/s."""
+    return speed_kmh / 3.6
+
+
+def celsius_to_kelvin(t_celsius: float) -> float:
+    """Convert degrees Celsius to kelvin."""
+    return t_celsius + ZERO_CELSIUS_K
+
+
+def kelvin_to_celsius(t_kelvin: float) -> float:
+    """Convert kelvin to degrees Celsius."""
+    return t_kelvin - ZERO_CELSIUS_K
