@@ -1,0 +1,365 @@
+"""The rail as an infinite periodic structure, solved by the symplectic (wave) method.
+
+The cell is one sleeper bay: the rail span from just right of sleeper ``n`` to
+just right of sleeper ``n+1`` (the pad at sleeper ``n+1`` belongs to the cell).
+Its transfer matrix is symplectic, so its eigenvalues come in pairs
+``(mu, 1/mu)``; the two waves with ``|mu| < 1`` decay to the right (where
+``|mu| ~ 1`` the choice is made by the direction of energy flow) and their
+partners decay to the left. A point load is matched by the decaying waves on
+each side of it (the "loaded cell"), and the response anywhere follows by
+propagating each wave with ``mu^k`` (never ``mu^-k``) and the exact beam field
+inside the span. See ``docs/design/0002-track-solver.md``.
+
+Positions ``x`` are measured along the rail in m, with sleepers at ``x = n d``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.errors import CaseError
+from railvib.pads.base import PadModel
+from railvib.track.beam import dynamic_stiffness, field_transfer, krylov_series
+
+__all__ = ["PeriodicTrack", "Rail", "TrackWaves"]
+
+#: where ``| |mu| - 1 |`` is below this, waves are sorted by energy flow, not modulus
+ENERGY_FLOW_TOLERANCE = 1e-6
+
+
+@dataclass(frozen=True)
+class Rail:
+    """Euler-Bernoulli rail.
+
+    Parameters
+    ----------
+    bending_stiffness : float
+        EI in N m^2 (> 0). CHN60, one rail: 6.62e6.
+    mass_per_length : float
+        m in kg/m (> 0). CHN60, one rail: 60.64.
+    loss_factor : float
+        Rail material loss factor eta_r (>= 0); EI becomes EI (1 + i eta_r).
+    """
+
+    bending_stiffness: float
+    mass_per_length: float
+    loss_factor: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name, value, unit in (
+            ("track.rail.bending_stiffness", self.bending_stiffness, "N m^2"),
+            ("track.rail.mass_per_length", self.mass_per_length, "kg/m"),
+        ):
+            if not (np.isfinite(value) and value > 0):
+                raise CaseError(name, value, f"must be > 0 ({unit})")
+        if not (np.isfinite(self.loss_factor) and self.loss_factor >= 0):
+            raise CaseError("track.rail.loss_factor", self.loss_factor, "must be >= 0")
+
+    @property
+    def complex_bending_stiffness(self) -> complex:
+        """``EI (1 + i eta_r)`` in N m^2."""
+        return self.bending_stiffness * (1.0 + 1j * self.loss_factor)
+
+
+@dataclass(frozen=True, eq=False)
+class TrackWaves:
+    """The decaying waves of the periodic rail at each frequency (dimensionless).
+
+    Attributes
+    ----------
+    f : numpy.ndarray
+        Frequencies, Hz, ``(n_freq,)``.
+    beta4 : numpy.ndarray
+        ``m omega^2 d^4 / EI*``, ``(n_freq,)``.
+    mu : numpy.ndarray
+        Propagation constants of the right-going waves, ``|mu| <= 1``, ``(n_freq, 2)``.
+    right, left : numpy.ndarray
+        Wave states ``(w, d w', d^2 w'', d^3 w''')`` just right of a sleeper,
+        ``(n_freq, 4, 2)``; ``right[..., j]`` decays to the right by ``mu_j`` per bay,
+        ``left[..., j]`` decays to the left by ``mu_j`` per bay.
+    scale : numpy.ndarray
+        ``d^3 / EI*`` in m/N: converts a dimensionless displacement per unit
+        dimensionless force to a receptance.
+    """
+
+    f: NDArray[np.float64]
+    beta4: NDArray[np.complex128]
+    mu: NDArray[np.complex128]
+    right: NDArray[np.complex128]
+    left: NDArray[np.complex128]
+    scale: complex
+    _matching_inv: NDArray[np.complex128] = field(repr=False)
+
+
+@dataclass(frozen=True)
+class PeriodicTrack:
+    """Rail on discrete railpads at every sleeper, rigid below (embedded sleepers).
+
+    Parameters
+    ----------
+    rail : Rail
+        The rail beam.
+    pad : PadModel
+        Railpad model, complex stiffness per rail seat in N/m.
+    sleeper_spacing : float
+        Sleeper spacing d in m (> 0).
+    pad_temperature : float, optional
+        Pad temperature in degrees Celsius, passed to the pad model.
+
+    Examples
+    --------
+    >>> from railvib.pads import SpringDamper
+    >>> track = PeriodicTrack(Rail(6.62e6, 60.64), SpringDamper(5e7, 5e4), 0.6)
+    >>> alpha = track.receptance([10.0, 100.0], x_load=[0.3], x_obs=[0.3])
+    >>> alpha.shape
+    (2, 1, 1)
+    """
+
+    rail: Rail
+    pad: PadModel
+    sleeper_spacing: float
+    pad_temperature: float | None = None
+
+    def __post_init__(self) -> None:
+        d = self.sleeper_spacing
+        if not (np.isfinite(d) and d > 0):
+            raise CaseError("track.sleeper_spacing", d, "must be > 0 (m)")
+
+    # -- dimensionless kernels ------------------------------------------------------------
+    def _beta4(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
+        omega = 2.0 * np.pi * f
+        d = self.sleeper_spacing
+        return self.rail.mass_per_length * omega**2 * d**4 / self.rail.complex_bending_stiffness
+
+    def _pad_hat(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
+        z = np.asarray(self.pad.stiffness(f, self.pad_temperature), dtype=complex)
+        return z * self.sleeper_spacing**3 / self.rail.complex_bending_stiffness
+
+    def cell_transfer(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """Dimensionless field transfer matrix of one bay, ``(n_freq, 4, 4)``.
+
+        Maps ``(w, d w', d^2 w'', d^3 w''')`` just right of sleeper n to the same
+        just right of sleeper n+1: beam over one span, then the pad's shear jump.
+        """
+        f = _as_freq(f)
+        t = field_transfer(self._beta4(f), 1.0)
+        t[:, 3, :] -= self._pad_hat(f)[:, None] * t[:, 0, :]
+        return t
+
+    def waves(self, f: ArrayLike) -> TrackWaves:
+        """Eigen-analysis of the bay: propagation constants and decaying waves.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0).
+
+        Returns
+        -------
+        TrackWaves
+        """
+        f = _as_freq(f)
+        t = self.cell_transfer(f)
+        mu_r, mu_l = _propagation_constants(t)
+        vec_r = _bloch_vector(t, mu_r)
+        vec_l = _bloch_vector(t, mu_l)
+        # sort each pair by energy flow where the modulus cannot tell
+        power_r = _energy_flux(vec_r)
+        swap = (np.abs(np.abs(mu_r) - 1.0) < ENERGY_FLOW_TOLERANCE) & (power_r < 0)
+        mu_small = np.where(swap, 1.0 / mu_l, mu_r)
+        right = np.where(swap[:, None, :], vec_l, vec_r)
+        left = np.where(swap[:, None, :], vec_r, vec_l)
+        matching = np.concatenate([right, -left], axis=2)
+        return TrackWaves(
+            f=f,
+            beta4=self._beta4(f),
+            mu=mu_small,
+            right=right,
+            left=left,
+            scale=self.sleeper_spacing**3 / self.rail.complex_bending_stiffness,
+            _matching_inv=np.linalg.inv(matching),
+        )
+
+    # -- public physics -------------------------------------------------------------------
+    def receptance(
+        self, f: ArrayLike, x_load: ArrayLike, x_obs: ArrayLike, *, waves: TrackWaves | None = None
+    ) -> NDArray[np.complex128]:
+        """Rail receptance (vertical displacement per unit vertical force) between points.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, ``(n_freq,)``.
+        x_load : array_like
+            Positions of the unit loads along the rail, m (sleepers at ``n d``).
+        x_obs : array_like
+            Positions of the observation points, m.
+        waves : TrackWaves, optional
+            Reuse a precomputed :meth:`waves` for the same `f`.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex receptance in m/N, shape ``(n_freq, n_obs, n_load)``;
+            ``[k, i, j]`` is the displacement at ``x_obs[i]`` per unit force at ``x_load[j]``.
+        """
+        w = self.waves(f) if waves is None else waves
+        d = self.sleeper_spacing
+        x_load = np.atleast_1d(np.asarray(x_load, dtype=float)) / d
+        x_obs = np.atleast_1d(np.asarray(x_obs, dtype=float)) / d
+        for name, x in (("x_load", x_load), ("x_obs", x_obs)):
+            if not np.all(np.isfinite(x)):
+                raise CaseError(name, list(x * d), "finite positions (m)")
+        bay_load, xi = _bay(x_load)
+        bay_obs, eta = _bay(x_obs)
+        # wave amplitudes (a1, a2, b1, b2) for each load: [R, -L] c = B(-xi) e4
+        amps = np.empty((w.f.size, 4, x_load.size), dtype=complex)
+        for j, xi_j in enumerate(xi):
+            rhs = field_transfer(w.beta4, -xi_j)[:, :, 3]
+            amps[:, :, j] = np.einsum("fij,fj->fi", w._matching_inv, rhs)
+        # displacement row of B(eta) applied to each wave: (n_freq, n_obs, 2)
+        out = np.empty((w.f.size, x_obs.size, x_load.size), dtype=complex)
+        for i, eta_i in enumerate(eta):
+            row = np.stack(krylov_series(w.beta4, eta_i), axis=-1)  # (n_freq, 4)
+            disp_r = np.einsum("fk,fkj->fj", row, w.right)
+            disp_l = np.einsum("fk,fkj->fj", row, w.left)
+            for j in range(x_load.size):
+                if x_obs[i] >= x_load[j]:
+                    m = bay_obs[i] - bay_load[j]
+                    out[:, i, j] = np.sum(amps[:, :2, j] * w.mu**m * disp_r, axis=1)
+                else:
+                    m = bay_load[j] - bay_obs[i]
+                    out[:, i, j] = np.sum(amps[:, 2:, j] * w.mu**m * disp_l, axis=1)
+        return out * w.scale
+
+    def transfer_matrix(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """Transfer matrix S of one bay in the paper's state ``(u, p)``, SI units.
+
+        ``u = (w [m], theta [rad])`` and ``p = (shear [N], moment [N m])``, the
+        force exerted across the interface on the bay to its right (paper Eq. 4).
+        ``S^T J S = J`` with ``J = [[0, I], [-I, 0]]``.
+        """
+        c, c_inv = self._state_maps()
+        return c @ self.cell_transfer(f) @ c_inv
+
+    def cell_dynamic_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """Dynamic stiffness of one bay, ``(n_freq, 4, 4)``, DOFs ``(w_a, theta_a, w_b, theta_b)``.
+
+        Exact beam span plus the pad at the right end; SI units (N/m, N, N m).
+        It has poles at the clamped-clamped frequencies of the span (3268 Hz for
+        0.6 m of CHN60); the solver uses the pole-free :meth:`cell_transfer`.
+        """
+        f = _as_freq(f)
+        d = self.sleeper_spacing
+        ei = self.rail.complex_bending_stiffness
+        k = dynamic_stiffness(self._beta4(f), 1.0)
+        scale = np.array([1.0, d, 1.0, d])
+        k = k * scale[:, None] * scale[None, :] * ei / d**3
+        k[:, 2, 2] += self.pad.stiffness(f, self.pad_temperature)
+        return k
+
+    def semi_infinite_stiffness(
+        self, f: ArrayLike
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Dynamic stiffnesses of the semi-infinite rail seen from a sleeper (paper Eq. 6).
+
+        Returns
+        -------
+        P_b, P_a : numpy.ndarray
+            ``(n_freq, 2, 2)`` in SI units. ``P_b = N_a X_a^-1``: the right chain
+            (starting just right of a sleeper, excluding that sleeper's pad) resists
+            with ``p = P_b u``; ``P_a = -N_b X_b^-1`` for the left chain.
+        """
+        w = self.waves(f)
+        c, _ = self._state_maps()
+        right = c @ w.right
+        left = c @ w.left
+        p_b = right[:, 2:, :] @ np.linalg.inv(right[:, :2, :])
+        p_a = -left[:, 2:, :] @ np.linalg.inv(left[:, :2, :])
+        return p_b, p_a
+
+    def _state_maps(self) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        d = self.sleeper_spacing
+        ei = self.rail.complex_bending_stiffness
+        c = np.zeros((4, 4), dtype=complex)
+        c[0, 0] = 1.0
+        c[1, 1] = 1.0 / d
+        c[2, 3] = ei / d**3
+        c[3, 2] = -ei / d**2
+        return c, np.linalg.inv(c)
+
+
+def _as_freq(f: ArrayLike) -> NDArray[np.float64]:
+    f = np.atleast_1d(np.asarray(f, dtype=float))
+    if f.ndim != 1 or not np.all(np.isfinite(f) & (f > 0)):
+        raise CaseError("frequency", "non-positive or non-finite values", "finite and > 0 (Hz)")
+    return f
+
+
+def _bay(x: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """Bay index and local coordinate in [0, 1) of dimensionless positions."""
+    bay = np.floor(x).astype(np.int64)
+    return bay, x - bay
+
+
+def _propagation_constants(
+    t: NDArray[np.complex128],
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """The two small (``|mu| <= 1``) eigenvalues and their large partners ``1/mu``.
+
+    The characteristic polynomial of a 4x4 symplectic matrix is palindromic, so
+    ``lambda = mu + 1/mu`` solves ``lambda^2 - c1 lambda + (c2 - 2) = 0`` with
+    ``c1 = tr T`` and ``c2 = (c1^2 - tr T^2) / 2``.
+    """
+    c1 = np.einsum("fii->f", t)
+    c2 = 0.5 * (c1**2 - np.einsum("fij,fji->f", t, t))
+    disc = np.sqrt(c1**2 - 4.0 * (c2 - 2.0))
+    lam = np.stack([0.5 * (c1 + disc), 0.5 * (c1 - disc)], axis=1)
+    root = np.sqrt(lam**2 - 4.0)
+    m1 = 0.5 * (lam + root)
+    m2 = 0.5 * (lam - root)
+    big = np.where(np.abs(m1) >= np.abs(m2), m1, m2)  # no cancellation in the larger root
+    return 1.0 / big, big
+
+
+def _bloch_vector(t: NDArray[np.complex128], mu: NDArray[np.complex128]) -> NDArray[np.complex128]:
+    """Unit eigenvectors of ``t`` for eigenvalues ``mu``: ``(n_freq, 4, 2)``.
+
+    The null vector of ``t - mu I`` is the generalised cross product of three of
+    its rows. Rows 0-2 (pure beam rows, untouched by the pad) are used, and rows
+    1-3 where that is better conditioned.
+    """
+    m = t[:, None, :, :] - mu[:, :, None, None] * np.eye(4)  # (n_freq, 2, 4, 4)
+    m = m / np.linalg.norm(m, axis=3, keepdims=True)
+    first = _cross3(m[..., 0, :], m[..., 1, :], m[..., 2, :])
+    second = _cross3(m[..., 1, :], m[..., 2, :], m[..., 3, :])
+    n1 = np.linalg.norm(first, axis=2, keepdims=True)
+    n2 = np.linalg.norm(second, axis=2, keepdims=True)
+    vec = np.where(n1 >= n2, first / n1, second / n2)
+    return np.swapaxes(vec, 1, 2)
+
+
+def _cross3(
+    a: NDArray[np.complex128], b: NDArray[np.complex128], c: NDArray[np.complex128]
+) -> NDArray[np.complex128]:
+    """Generalised cross product of three 4-vectors stored on the last axis."""
+    out = np.empty_like(a)
+    cols = (0, 1, 2, 3)
+    for i in cols:
+        p, q, r = (k for k in cols if k != i)
+        det = (
+            a[..., p] * (b[..., q] * c[..., r] - b[..., r] * c[..., q])
+            - a[..., q] * (b[..., p] * c[..., r] - b[..., r] * c[..., p])
+            + a[..., r] * (b[..., p] * c[..., q] - b[..., q] * c[..., p])
+        )
+        out[..., i] = det if i % 2 == 0 else -det
+    return out
+
+
+def _energy_flux(vec: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """Sign-carrying power flow to the right, ``Im(w''' conj(w) - w'' conj(w'))``, per wave."""
+    w, w1, w2, w3 = vec[:, 0], vec[:, 1], vec[:, 2], vec[:, 3]
+    return np.imag(w3 * np.conj(w) - w2 * np.conj(w1))

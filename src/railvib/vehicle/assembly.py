@@ -1,0 +1,131 @@
+"""Assemble mass, stiffness and damping matrices of a vehicle from its parts."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.errors import CaseError
+from railvib.vehicle.parts import Attachment, RigidBody, Suspension, Wheel
+
+__all__ = ["Vehicle"]
+
+GRAVITY = 9.81  # m/s^2
+
+
+@dataclass(frozen=True)
+class Vehicle:
+    """A pitch-plane multibody vehicle: bodies, suspensions and wheels, with named DOFs.
+
+    Displacements are positive downward; a pitch rotation ``theta`` moves a point
+    at longitudinal position ``x`` (relative to the body's centre) by ``x theta``.
+
+    Parameters
+    ----------
+    bodies : tuple of RigidBody
+        All bodies; wheelsets are bodies without a pitch DOF.
+    suspensions : tuple of Suspension
+        Spring-damper connections between body points.
+    wheels : tuple of Wheel
+        Contacts, listed from the leading wheel backwards.
+    """
+
+    bodies: tuple[RigidBody, ...]
+    suspensions: tuple[Suspension, ...]
+    wheels: tuple[Wheel, ...]
+
+    def __post_init__(self) -> None:
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            raise CaseError("vehicle.bodies", names, "body names must be unique")
+        for s in self.suspensions:
+            for a in (s.upper, s.lower):
+                if a.body not in names:
+                    raise CaseError(f"vehicle.{s.name}", a.body, f"a body among {names}")
+        xs = [w.x for w in self.wheels]
+        if not self.wheels or any(np.diff(xs) >= 0):
+            raise CaseError("vehicle.wheels", xs, "at least one wheel, listed front to back")
+        for w in self.wheels:
+            if w.body not in names:
+                raise CaseError("vehicle.wheels", w.body, f"a body among {names}")
+
+    @cached_property
+    def dofs(self) -> tuple[str, ...]:
+        """DOF labels in matrix order."""
+        return tuple(dof for body in self.bodies for dof in body.dofs)
+
+    def _body(self, name: str) -> RigidBody:
+        return next(b for b in self.bodies if b.name == name)
+
+    def point_vector(self, point: Attachment) -> NDArray[np.float64]:
+        """Row vector mapping the DOFs to the vertical displacement of `point`."""
+        body = self._body(point.body)
+        vec = np.zeros(len(self.dofs))
+        vec[self.dofs.index(f"{body.name}.bounce")] = 1.0
+        if body.pitch_inertia is not None:
+            vec[self.dofs.index(f"{body.name}.pitch")] = point.x - body.x
+        return vec
+
+    @cached_property
+    def mass_matrix(self) -> NDArray[np.float64]:
+        """Mass matrix in kg and kg m^2, ``(n_dof, n_dof)``."""
+        diag = []
+        for b in self.bodies:
+            diag.append(b.mass)
+            if b.pitch_inertia is not None:
+                diag.append(b.pitch_inertia)
+        return np.diag(diag)
+
+    def _spring_matrix(self, attr: str) -> NDArray[np.float64]:
+        n = len(self.dofs)
+        out = np.zeros((n, n))
+        for s in self.suspensions:
+            b = self.point_vector(s.upper) - self.point_vector(s.lower)
+            out += getattr(s, attr) * np.outer(b, b)
+        return out
+
+    @cached_property
+    def stiffness_matrix(self) -> NDArray[np.float64]:
+        """Stiffness matrix (N/m, N, N m), ``(n_dof, n_dof)``."""
+        return self._spring_matrix("stiffness")
+
+    @cached_property
+    def damping_matrix(self) -> NDArray[np.float64]:
+        """Viscous damping matrix (N s/m, ...), ``(n_dof, n_dof)``."""
+        return self._spring_matrix("damping")
+
+    @cached_property
+    def wheel_matrix(self) -> NDArray[np.float64]:
+        """``B``, ``(n_dof, n_wheel)``: column j maps a force at wheel j onto the DOFs."""
+        return np.stack([self.point_vector(Attachment(w.body, w.x)) for w in self.wheels], axis=1)
+
+    @cached_property
+    def wheel_offsets(self) -> NDArray[np.float64]:
+        """Distance of each wheel behind the leading wheel, m (first is 0)."""
+        xs = np.array([w.x for w in self.wheels])
+        return xs[0] - xs
+
+    def dynamic_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """``K + i omega C - omega^2 M`` stacked over frequency, ``(n_freq, n_dof, n_dof)``."""
+        omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
+        return self.stiffness_matrix + 1j * omega * self.damping_matrix - omega**2 * self.mass_matrix
+
+    def static_wheel_loads(self, gravity: float = GRAVITY) -> NDArray[np.float64]:
+        """Static load carried at each wheel contact (N), wheels held rigidly.
+
+        Solves the static equilibrium of the sprung bodies with the wheel points
+        fixed; the contact reactions then balance the weight of everything.
+        """
+        b = self.wheel_matrix
+        weight = np.zeros(len(self.dofs))
+        for body in self.bodies:
+            weight[self.dofs.index(f"{body.name}.bounce")] = body.mass * gravity
+        # Solve min over u of the energy with B^T u = 0 (wheels fixed): KKT system
+        k = self.stiffness_matrix
+        n, m = b.shape
+        kkt = np.block([[k, b], [b.T, np.zeros((m, m))]])
+        sol = np.linalg.solve(kkt, np.concatenate([weight, np.zeros(m)]))
+        return sol[n:]
