@@ -1,0 +1,150 @@
+"""A user-supplied spatial spectrum, interpolated linearly in log-log."""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.errors import CaseError
+from railvib.spectra._checks import as_wavenumber
+from railvib.spectra.base import SpatialSpectrum
+
+__all__ = ["Tabulated"]
+
+#: Abscissa columns and their conversion to wavenumber Omega in rad/m.
+ABSCISSA_COLUMNS = {
+    "wavelength_m": lambda x: 2.0 * np.pi / x,
+    "spatial_frequency_cycle_per_m": lambda x: 2.0 * np.pi * x,
+    "wavenumber_rad_per_m": lambda x: x,
+}
+#: PSD columns and their conversion to m^2/(rad/m): S(Omega) = S(n) / (2 pi).
+PSD_COLUMNS = {
+    "psd_m2_per_cycle_per_m": lambda s: s / (2.0 * np.pi),
+    "psd_m2_per_rad_per_m": lambda s: s,
+}
+COLUMN_UNITS = {
+    "wavelength_m": "m",
+    "spatial_frequency_cycle_per_m": "cycle/m",
+    "wavenumber_rad_per_m": "rad/m",
+    "psd_m2_per_cycle_per_m": "m^2/(cycle/m)",
+    "psd_m2_per_rad_per_m": "m^2/(rad/m)",
+}
+
+
+def _check_column(name: str, values: NDArray[np.float64], unit: str) -> None:
+    ok = np.isfinite(values) & (values > 0.0)
+    if not np.all(ok):
+        bad = float(values[~ok][0])
+        raise CaseError(name, bad, f"every value must be finite and > 0 ({unit})")
+
+
+@dataclass(frozen=True, eq=False)
+class Tabulated(SpatialSpectrum):
+    """Tabulated one-sided spatial PSD, interpolated linearly in log(S) against log(Omega).
+
+    Outside the tabulated wavenumber range the PSD is **zero**: no content is invented
+    beyond what the user measured. Combine it with another spectrum via
+    :class:`~railvib.spectra.Combined` to cover a wider band.
+
+    Parameters
+    ----------
+    wavenumber_rad_per_m : array_like
+        Spatial circular frequencies Omega in rad/m: 1-D, at least 2, finite, > 0, distinct
+        (any order; they are sorted).
+    psd_m2_per_rad_per_m : array_like
+        One-sided PSD in m^2/(rad/m) at those wavenumbers: same length, finite, > 0.
+    """
+
+    wavenumber_rad_per_m: NDArray[np.float64] = field(repr=False)
+    psd_m2_per_rad_per_m: NDArray[np.float64] = field(repr=False)
+
+    def __post_init__(self) -> None:
+        om = np.asarray(self.wavenumber_rad_per_m, dtype=float)
+        s = np.asarray(self.psd_m2_per_rad_per_m, dtype=float)
+        if om.ndim != 1 or om.size < 2:
+            raise CaseError(
+                "wavenumber_rad_per_m", f"array of shape {om.shape}", "a 1-D table of >= 2 rows"
+            )
+        if s.shape != om.shape:
+            raise CaseError(
+                "psd_m2_per_rad_per_m", f"array of shape {s.shape}", f"shape {om.shape}"
+            )
+        _check_column("wavenumber_rad_per_m", om, "rad/m")
+        _check_column("psd_m2_per_rad_per_m", s, "m^2/(rad/m)")
+        order = np.argsort(om)
+        om, s = om[order], s[order]
+        if np.any(np.diff(om) <= 0.0):
+            dup = float(om[1:][np.diff(om) <= 0.0][0])
+            raise CaseError("wavenumber_rad_per_m", dup, "distinct wavenumbers (rad/m)")
+        for name, arr in (("wavenumber_rad_per_m", om), ("psd_m2_per_rad_per_m", s)):
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+
+    @classmethod
+    def from_csv(cls, path: str | Path, *, delimiter: str = ",") -> Tabulated:
+        """Read a table from a CSV file with a header row.
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            CSV file. Exactly two columns: one abscissa, ``wavelength_m`` (m),
+            ``spatial_frequency_cycle_per_m`` (cycle/m) or ``wavenumber_rad_per_m`` (rad/m);
+            and one PSD, ``psd_m2_per_cycle_per_m`` (m^2/(cycle/m)) or
+            ``psd_m2_per_rad_per_m`` (m^2/(rad/m)). Converted to Omega and m^2/(rad/m).
+        delimiter : str
+            Field separator. Default ",".
+
+        Raises
+        ------
+        CaseError
+            Unreadable file, unknown / missing / repeated column, non-numeric cell, or a
+            table that fails the checks of :class:`Tabulated`.
+        """
+        try:
+            with open(path, newline="", encoding="utf-8") as fh:
+                rows = [r for r in csv.reader(fh, delimiter=delimiter) if any(c.strip() for c in r)]
+        except OSError as exc:
+            raise CaseError("path", str(path), f"a readable CSV file ({exc.strerror})") from None
+        if not rows:
+            raise CaseError("path", str(path), "a CSV file with a header row and >= 2 data rows")
+        header = [c.strip() for c in rows[0]]
+        allowed = ", ".join([*ABSCISSA_COLUMNS, *PSD_COLUMNS])
+        for name in header:
+            if name not in ABSCISSA_COLUMNS and name not in PSD_COLUMNS:
+                raise CaseError("column", name, f"one of {allowed}")
+        if len(set(header)) != len(header):
+            raise CaseError("column", header, "each column at most once")
+        x_cols = [c for c in header if c in ABSCISSA_COLUMNS]
+        s_cols = [c for c in header if c in PSD_COLUMNS]
+        if len(x_cols) != 1:
+            raise CaseError("column", x_cols, f"exactly one of {', '.join(ABSCISSA_COLUMNS)}")
+        if len(s_cols) != 1:
+            raise CaseError("column", s_cols, f"exactly one of {', '.join(PSD_COLUMNS)}")
+        data = np.empty((len(rows) - 1, 2))
+        for i, row in enumerate(rows[1:], start=2):
+            if len(row) != len(header):
+                raise CaseError(f"row {i}", row, f"{len(header)} cells")
+            try:
+                cells = dict(zip(header, (float(c) for c in row), strict=True))
+            except ValueError:
+                raise CaseError(f"row {i}", row, "numbers only") from None
+            data[i - 2] = cells[x_cols[0]], cells[s_cols[0]]
+        x, s = data[:, 0], data[:, 1]
+        if x.size < 2:
+            raise CaseError("path", str(path), "a table with >= 2 data rows")
+        _check_column(x_cols[0], x, COLUMN_UNITS[x_cols[0]])
+        _check_column(s_cols[0], s, COLUMN_UNITS[s_cols[0]])
+        return cls(ABSCISSA_COLUMNS[x_cols[0]](x), PSD_COLUMNS[s_cols[0]](s))
+
+    def psd(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
+        """One-sided PSD in m^2/(rad/m) at `wavenumber` (rad/m, > 0); zero outside the table."""
+        om = as_wavenumber(wavenumber)
+        log_om = np.log(self.wavenumber_rad_per_m)
+        log_s = np.log(self.psd_m2_per_rad_per_m)
+        s = np.exp(np.interp(np.log(om), log_om, log_s))
+        inside = (om >= self.wavenumber_rad_per_m[0]) & (om <= self.wavenumber_rad_per_m[-1])
+        return np.where(inside, s, 0.0)
