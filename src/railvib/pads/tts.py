@@ -1,0 +1,281 @@
+"""Time-temperature superposition: WLF shift factor, re-referencing, vertical factor.
+
+Temperatures are in degrees Celsius at every public interface and in kelvin inside
+this module (differences are the same in both scales; the vertical factor needs
+absolute temperatures).
+
+References
+----------
+Seed paper, section 3.2.1, Eqs. 20-26 (Eq. 20/21 and Eq. 23 as corrected in
+``shared/physics.md`` section 3.6) and Williams, Landel & Ferry, *J. Am. Chem. Soc.*
+77:3701 (1955).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.errors import CaseError
+from railvib.pads.base import PadModel
+from railvib.units import celsius_to_kelvin
+
+__all__ = [
+    "DEFAULT_EXPANSION_COEFFICIENT_PER_K",
+    "UNIVERSAL_C1",
+    "UNIVERSAL_C2_K",
+    "WLF",
+    "TemperatureShifted",
+    "vertical_shift_factor",
+]
+
+#: "Universal" WLF constants at T0 = Tg (the seed attributes them to ISO 4664-1).
+UNIVERSAL_C1 = 17.44
+UNIVERSAL_C2_K = 51.6
+#: Volume expansion coefficient a_f used by the seed (Eq. 26), 1/K.
+DEFAULT_EXPANSION_COEFFICIENT_PER_K = 4.8e-4
+
+
+@dataclass(frozen=True)
+class WLF:
+    """Williams-Landel-Ferry shift: ``log10 a_T = -C1 (T - T0) / (C2 + T - T0)`` (Eq. 22).
+
+    The property at ``(f, T)`` equals the property at the reference temperature
+    ``T0`` at the reduced frequency ``f a_T``; for ``T < T0``, ``a_T > 1``.
+
+    Parameters
+    ----------
+    c1 : float
+        C1 (dimensionless, > 0).
+    c2_k : float
+        C2 in K (> 0).
+    reference_temperature_c : float
+        T0, the temperature at which `c1` and `c2_k` apply, degC.
+    """
+
+    c1: float
+    c2_k: float
+    reference_temperature_c: float
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.c1) and self.c1 > 0):
+            raise CaseError("wlf.c1", self.c1, "must be > 0 (dimensionless)")
+        if not (np.isfinite(self.c2_k) and self.c2_k > 0):
+            raise CaseError("wlf.c2_k", self.c2_k, "must be > 0 (K)")
+        if not (
+            np.isfinite(self.reference_temperature_c) and self.reference_temperature_c > -273.15
+        ):
+            raise CaseError(
+                "wlf.reference_temperature_c",
+                self.reference_temperature_c,
+                "must be a finite temperature above absolute zero (degC)",
+            )
+
+    @classmethod
+    def universal(cls, glass_transition_c: float) -> WLF:
+        """WLF with the universal constants C1 = 17.44, C2 = 51.6 K at ``T0 = Tg``.
+
+        Parameters
+        ----------
+        glass_transition_c : float
+            Glass transition temperature Tg, degC.
+        """
+        return cls(UNIVERSAL_C1, UNIVERSAL_C2_K, glass_transition_c)
+
+    @property
+    def singular_temperature_c(self) -> float:
+        """``T0 - C2`` in degC, where the WLF denominator vanishes."""
+        return self.reference_temperature_c - self.c2_k
+
+    def _check_temperature(self, temperature_c: NDArray[np.float64], field: str) -> None:
+        bad = ~np.isfinite(temperature_c) | (temperature_c <= self.singular_temperature_c)
+        if np.any(bad):
+            value = float(temperature_c.ravel()[np.flatnonzero(bad.ravel())[0]])
+            raise CaseError(
+                field,
+                value,
+                f"must be above T0 - C2 = {self.singular_temperature_c:.4g} degC, where WLF "
+                f"(C1 = {self.c1:.4g}, C2 = {self.c2_k:.4g} K, T0 = "
+                f"{self.reference_temperature_c:.4g} degC) is singular",
+            )
+
+    def log_shift(
+        self, temperature_c: ArrayLike, *, field: str = "temperature"
+    ) -> NDArray[np.float64]:
+        """``log10 a_T`` (dimensionless) at temperatures in degC.
+
+        Parameters
+        ----------
+        temperature_c : array_like
+            Temperatures T, degC (> T0 - C2).
+        field : str
+            Field name used if a temperature is rejected.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``log10 a_T``, same shape as `temperature_c`.
+        """
+        t_k = celsius_to_kelvin(np.asarray(temperature_c, dtype=float))
+        self._check_temperature(t_k - celsius_to_kelvin(0.0), field)
+        dt = t_k - celsius_to_kelvin(self.reference_temperature_c)
+        return -self.c1 * dt / (self.c2_k + dt)
+
+    def shift_factor(self, temperature_c: ArrayLike) -> NDArray[np.float64]:
+        """``a_T`` (dimensionless) at temperatures in degC."""
+        return 10.0 ** self.log_shift(temperature_c)
+
+    def reduced_frequency(self, f: ArrayLike, temperature_c: float) -> NDArray[np.float64]:
+        """Reduced frequency ``f a_T`` in Hz at the reference temperature.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz at temperature `temperature_c`.
+        temperature_c : float
+            Temperature, degC.
+        """
+        return np.asarray(f, dtype=float) * self.shift_factor(temperature_c)
+
+    def rereferenced(self, reference_temperature_c: float) -> WLF:
+        """Return the same shift law written about another reference temperature (Eqs. 23-25).
+
+        With ``T0' = T0 + Delta``: ``C1' = C1 C2 / (C2 + Delta)`` and ``C2' = C2 + Delta``.
+
+        Parameters
+        ----------
+        reference_temperature_c : float
+            New reference temperature T0', degC (> T0 - C2).
+
+        Returns
+        -------
+        WLF
+        """
+        self._check_temperature(
+            np.asarray(reference_temperature_c, dtype=float), "reference_temperature_c"
+        )
+        delta = reference_temperature_c - self.reference_temperature_c
+        return WLF(
+            self.c1 * self.c2_k / (self.c2_k + delta),
+            self.c2_k + delta,
+            float(reference_temperature_c),
+        )
+
+
+def vertical_shift_factor(
+    temperature_c: ArrayLike,
+    reference_temperature_c: float,
+    expansion_coefficient_per_k: float = DEFAULT_EXPANSION_COEFFICIENT_PER_K,
+) -> NDArray[np.float64]:
+    """Vertical TTS factor ``rho T / (rho0 T0)`` (Eqs. 20, 21 and 26), dimensionless.
+
+    ``K(f, T) = rho T / (rho0 T0) * K_ref(f a_T)`` for storage and loss alike, with
+    ``rho / rho0 = 1 / (1 + a_f (T - T0))`` and T, T0 in kelvin.
+
+    Parameters
+    ----------
+    temperature_c : array_like
+        Temperatures T, degC.
+    reference_temperature_c : float
+        Reference temperature T0, degC.
+    expansion_coefficient_per_k : float
+        Volume expansion coefficient a_f, 1/K (>= 0). Seed: 4.8e-4.
+
+    Returns
+    -------
+    numpy.ndarray
+        The factor, same shape as `temperature_c`.
+    """
+    if not (np.isfinite(expansion_coefficient_per_k) and expansion_coefficient_per_k >= 0):
+        raise CaseError(
+            "expansion_coefficient_per_k", expansion_coefficient_per_k, "must be >= 0 (1/K)"
+        )
+    t_k = celsius_to_kelvin(np.asarray(temperature_c, dtype=float))
+    t0_k = celsius_to_kelvin(float(reference_temperature_c))
+    if np.any(t_k <= 0) or t0_k <= 0:
+        raise CaseError("temperature", temperature_c, "must be above absolute zero (degC)")
+    expansion = 1.0 + expansion_coefficient_per_k * (t_k - t0_k)
+    if np.any(expansion <= 0):
+        raise CaseError(
+            "temperature", temperature_c, "gives a non-positive density ratio in Eq. 26 (degC)"
+        )
+    return (t_k / t0_k) / expansion
+
+
+@dataclass(frozen=True)
+class TemperatureShifted(PadModel):
+    """A pad whose master curve at one reference temperature is shifted by TTS.
+
+    ``K*(f, T) = v(T) K*_ref(f a_T)`` with ``a_T`` from `wlf` (re-referenced to
+    `reference_temperature_c`) and ``v(T) = rho T / (rho0 T0)`` when `vertical_shift`
+    is true, else 1. The loss factor is shifted horizontally only.
+
+    Parameters
+    ----------
+    base : PadModel
+        Master-curve model: the pad at `reference_temperature_c`, N/m.
+    wlf : WLF
+        Shift law; its own reference temperature may differ (e.g. universal
+        constants at Tg): it is re-referenced with Eqs. 23-25.
+    reference_temperature_c : float
+        Temperature at which `base` describes the pad, degC.
+    vertical_shift : bool
+        Apply the density-temperature factor of Eqs. 20-21.
+    expansion_coefficient_per_k : float
+        Volume expansion coefficient a_f for the vertical factor, 1/K.
+
+    Notes
+    -----
+    ``stiffness(f, None)`` returns the pad at `reference_temperature_c`.
+    """
+
+    base: PadModel
+    wlf: WLF
+    reference_temperature_c: float
+    vertical_shift: bool = True
+    expansion_coefficient_per_k: float = DEFAULT_EXPANSION_COEFFICIENT_PER_K
+    model_name = "temperature_shifted"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.base, PadModel) or isinstance(self.base, TemperatureShifted):
+            raise CaseError("track.pad.model", self.base, "a single (unshifted) pad model")
+        # validates the reference temperature against the WLF singularity
+        self.wlf.rereferenced(self.reference_temperature_c)
+        if not (
+            np.isfinite(self.expansion_coefficient_per_k) and self.expansion_coefficient_per_k >= 0
+        ):
+            raise CaseError(
+                "track.pad.tts.expansion_coefficient_per_k",
+                self.expansion_coefficient_per_k,
+                "must be >= 0 (1/K)",
+            )
+
+    @property
+    def wlf_at_reference(self) -> WLF:
+        """The WLF law written about `reference_temperature_c`."""
+        return self.wlf.rereferenced(self.reference_temperature_c)
+
+    def shift(self, temperature_c: float) -> tuple[float, float]:
+        """Return ``(a_T, v(T))``, both dimensionless, at `temperature_c` in degC."""
+        a_t = float(self.wlf.shift_factor(temperature_c))
+        a_ref = float(self.wlf.shift_factor(self.reference_temperature_c))
+        v = (
+            float(
+                vertical_shift_factor(
+                    temperature_c, self.reference_temperature_c, self.expansion_coefficient_per_k
+                )
+            )
+            if self.vertical_shift
+            else 1.0
+        )
+        return a_t / a_ref, v
+
+    def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
+        """``v(T) K*_ref(f a_T)`` in N/m; `temperature` in degC (None: the reference)."""
+        f = np.asarray(f, dtype=float)
+        if temperature is None:
+            return self.base.stiffness(f)
+        a_t, v = self.shift(float(temperature))
+        return v * self.base.stiffness(f * a_t)
