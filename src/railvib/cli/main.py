@@ -1,0 +1,104 @@
+"""The ``railvib`` command line: a thin layer over the public API."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from railvib.errors import RailvibError
+
+__all__ = ["cli", "main"]
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="railvib")
+def cli() -> None:
+    """railvib: random vibration of a vehicle on an infinite periodic track.
+
+    \b
+    railvib reproduce            the paper's study (figures, table, HTML report)
+    railvib run CASE.toml -o OUT one case: PSD dataset (netCDF, CSV), summary, plots
+    railvib template             a fully commented default case file
+    railvib presets              the shipped presets
+    railvib pad fit DATA.csv     railpad master curves and models from measurements
+    railvib validate CASE.toml   check PEM against finite-track and time-domain models
+
+    Units are SI unless a key names its unit; PSDs are one-sided per Hz.
+    """
+
+
+@cli.command()
+@click.argument("case_file", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
+    default=Path("railvib-out"), show_default=True, help="output folder",
+)
+@click.option("--no-plots", is_flag=True, help="skip the PNG figures")
+def run(case_file: Path, outdir: Path, no_plots: bool) -> None:
+    """Run CASE_FILE and write the dataset, summary and PSD plots to OUTPUT."""
+    from railvib.cli.run import run_case_command
+
+    run_case_command(case_file, outdir, plots=not no_plots)
+
+
+@cli.command()
+@click.option("--preset", default=None, help="preset supplying the values")
+def template(preset: str | None) -> None:
+    """Print a fully commented default case file."""
+    from railvib.case.template import render_template
+    from railvib.presets import DEFAULT_PRESET
+
+    click.echo(render_template(preset or DEFAULT_PRESET), nl=False)
+
+
+@cli.command()
+def presets() -> None:
+    """List the shipped presets."""
+    from railvib.presets import list_presets, load_preset
+
+    for name in list_presets():
+        click.echo(f"{name}: {load_preset(name).get('title', '')}")
+
+
+def _register_optional() -> None:
+    """Add sub-commands that live in their own modules."""
+    import importlib
+
+    for module, name in (
+        ("railvib.cli.pad", "pad"),
+        ("railvib.cli.validate", "validate"),
+        ("railvib.cli.reproduce", "reproduce"),
+        ("railvib.cli.sweep", "sweep"),
+    ):
+        try:
+            mod = importlib.import_module(module)
+        except ModuleNotFoundError as exc:
+            if exc.name != module:
+                raise
+            continue
+        cli.add_command(getattr(mod, name))
+
+
+_register_optional()
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point: run the CLI; a RailvibError becomes one line on stderr and exit code 2."""
+    try:
+        cli.main(args=argv, standalone_mode=False)
+    except RailvibError as exc:
+        click.echo(f"error: {exc}", err=True)
+        return 2
+    except click.exceptions.Abort:
+        click.echo("aborted", err=True)
+        return 130
+    except click.ClickException as exc:
+        exc.show()
+        return exc.exit_code
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,40 @@
+"""Named presets shipped as TOML data (with provenance notes next to each value).
+
+``presets/cases/<name>.toml`` are complete case files; a user case names one
+with ``preset = "<name>"`` and overrides any field.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from importlib import resources
+from typing import Any
+
+from railvib.errors import CaseError
+
+__all__ = ["DEFAULT_PRESET", "list_presets", "load_preset", "preset_text"]
+
+#: the paper's analysis: type-B metro, 80 km/h, embedded-sleeper slab track, WJ-7 pads
+DEFAULT_PRESET = "wang2017_metro"
+
+
+def _case_dir() -> Any:
+    return resources.files("railvib.presets").joinpath("cases")
+
+
+def list_presets() -> list[str]:
+    """Names of the shipped case presets."""
+    return sorted(p.name[:-5] for p in _case_dir().iterdir() if p.name.endswith(".toml"))
+
+
+def preset_text(name: str) -> str:
+    """The TOML text of preset `name`, comments included."""
+    names = list_presets()
+    if name not in names:
+        raise CaseError("preset", name, f"one of {names}")
+    return _case_dir().joinpath(f"{name}.toml").read_text(encoding="utf-8")
+
+
+def load_preset(name: str) -> dict[str, Any]:
+    """The parsed tables of preset `name`."""
+    return tomllib.loads(preset_text(name))
