@@ -153,6 +153,9 @@ def _segments(data: Measurements) -> list[tuple[float, NDArray[np.intp]]]:
     return [(float(t), np.flatnonzero(data.temperature_c == t)) for t in temps]
 
 
+_NO_OVERLAP = 1e6  # cost of a shift that leaves too little overlap (finite for the optimiser)
+
+
 def _pair_shift(xa: _F, ya: _F, xb: _F, yb: _F, max_shift: float) -> float:
     """Shift d (decades) that lays curve b (x + d) over curve a; y columns compared."""
     span = min(np.ptp(xa), np.ptp(xb))
@@ -162,7 +165,7 @@ def _pair_shift(xa: _F, ya: _F, xb: _F, yb: _F, max_shift: float) -> float:
     def cost(d: float) -> float:
         lo, hi = max(xa[0], xb[0] + d), min(xa[-1], xb[-1] + d)
         if hi - lo < 0.3 * span:
-            return np.inf
+            return _NO_OVERLAP
         x = np.concatenate([xa, xb + d])
         x = x[(x >= lo) & (x <= hi)]
         err = [
@@ -173,9 +176,11 @@ def _pair_shift(xa: _F, ya: _F, xb: _F, yb: _F, max_shift: float) -> float:
     step = 0.02
     grid = np.arange(-max_shift, max_shift + step, step)
     costs = np.array([cost(d) for d in grid])
-    if not np.any(np.isfinite(costs)):
+    if np.all(costs >= _NO_OVERLAP):
         return np.nan
     d0 = grid[int(np.argmin(costs))]
+    if abs(d0) >= max_shift - step:  # best superposition at the search limit: none found
+        return np.nan
     res = minimize_scalar(cost, bounds=(d0 - step, d0 + step), method="bounded")
     return float(res.x) if res.fun <= costs.min() else float(d0)
 
