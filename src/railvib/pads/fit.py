@@ -399,9 +399,9 @@ def _setup(
         ]
         return [([*x0, a], lo, hi, build) for a in (0.2, 0.5, 0.9)]
     if name == "generalized_maxwell":
-        decades = np.log10(f.max() / f.min())
-        n = n_terms or int(np.ceil(decades)) + 1
-        fi = np.logspace(np.log10(f.min()), np.log10(f.max()), n) if n > 1 else np.array([fm])
+        lo, hi = np.log10(f.min()) - 1.0, np.log10(f.max()) + 1.0  # spectrum beyond the band
+        n = n_terms or int(np.ceil(2 * (hi - lo))) + 1
+        fi = np.logspace(lo, hi, n) if n > 1 else np.array([fm])
         tau = 1.0 / (2 * np.pi * fi)
         k0 = float(k.real.min())
         x0 = [k0 / ks] + [max(k.real.max() - k0, 1e-3 * k0) / ks / n] * n
@@ -460,8 +460,9 @@ def fit_model(
     model : str
         One of :data:`FITTABLE_MODELS` (or the aliases ``zener``, ``prony``).
     n_terms : int, optional
-        Number of Prony branches (``generalized_maxwell``); default one per decade
-        of the data plus one, with relaxation times spread log-uniformly.
+        Number of Prony branches (``generalized_maxwell``); default two per decade
+        over the data's band widened by one decade each side, relaxation times
+        spread log-uniformly.
     f0_hz : float
         Reference frequency of ``log_linear`` / ``constant_phase``, Hz.
     loss_weight : float
