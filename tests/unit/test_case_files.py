@@ -1,0 +1,113 @@
+"""Case files: every rejection names the field, the value and what is allowed."""
+
+import re
+
+import pytest
+
+import railvib
+from railvib.case import case_from_dict, load_case
+from railvib.case.template import render_template
+from railvib.cli.main import main
+from railvib.errors import CaseError
+
+
+def _case(**overrides):
+    return {"preset": "wang2017_metro", **overrides}
+
+
+def test_preset_loads_and_template_round_trips(tmp_path):
+    case = railvib.load_preset_case()
+    assert case.vehicle.carbody_mass == 21920.0
+    path = tmp_path / "t.toml"
+    path.write_text(render_template())
+    assert load_case(path) == case
+
+
+@pytest.mark.parametrize(
+    ("overrides", "message"),
+    [
+        ({"vehicle": {"carbody_mass": -1.0}}, "vehicle.carbody_mass = -1.0: must be > 0.0 (kg)"),
+        ({"vehicle": {"bogie_mass": 0}}, "vehicle.bogie_mass = 0: must be > 0.0 (kg)"),
+        ({"speed_kmh": 0.0}, "speed_kmh = 0.0: must be > 0.0 (km/h)"),
+        ({"speed_kmh": "fast"}, "speed_kmh = 'fast': must be a number (km/h)"),
+        ({"track": {"sleeper_spacing": -0.6}}, "track.sleeper_spacing = -0.6: must be > 0.0 (m)"),
+        ({"track": {"rail": {"bending_stiffness": 0.0}}},
+         "track.rail.bending_stiffness = 0.0: must be > 0.0 (N m^2)"),
+        ({"track": {"pad": {"stiffness_n_per_m": -5e7}}}, "track.pad.stiffness_n_per_m = -50000000.0"),
+        ({"vehicle": {"wheel_mass": 3.0}}, "vehicle.wheel_mass = 3.0: unknown key; allowed here:"),
+        ({"colour": "red"}, "colour = 'red': unknown key"),
+        ({"frequency": {"f_min": 10.0, "f_max": 5.0}}, "frequency.f_max = 5.0: must be > f_min"),
+        ({"frequency": {"f_min": -1.0}}, "frequency.f_min = -1.0: must be > 0.0 (Hz)"),
+        ({"frequency": {"spacing": "log", "step": None}}, "frequency.n = None: required"),
+        ({"rail_model": "three_rails"}, "rail_model = 'three_rails': must be one of"),
+        ({"contact": {"leading_wheel_position": -0.1}},
+         "contact.leading_wheel_position = -0.1: must be >= 0.0 (m)"),
+        ({"irregularity": {"type": "fra", "class_number": 9}}, "irregularity.class_number = 9"),
+        ({"track": {"pad": {"model": "rubber_duck"}}}, "track.pad.model = 'rubber_duck'"),
+        ({"vehicle": {"wheelset_half_spacing": 7.0}},
+         "vehicle.wheelset_half_spacing = 7.0: must be < bogie_half_spacing = 6.3 (m)"),
+    ],
+)
+def test_rejections_name_field_value_and_allowed(overrides, message):
+    with pytest.raises(CaseError, match=re.escape(message)):
+        case_from_dict(_case(**overrides))
+
+
+def test_missing_value_is_rejected():
+    data = railvib.presets.load_preset("wang2017_metro")
+    del data["vehicle"]["wheelset_mass"]
+    with pytest.raises(CaseError, match=re.escape("vehicle.wheelset_mass = '<missing>': required (kg)")):
+        case_from_dict(data)
+
+
+def test_leading_wheel_beyond_spacing_is_rejected():
+    case = case_from_dict(_case(contact={"leading_wheel_position": 0.6}))
+    with pytest.raises(CaseError, match=re.escape("contact.leading_wheel_position = 0.6: must be in [0, 0.6) (m)")):
+        railvib.build_system(case)
+
+
+def test_bad_toml_and_missing_file(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("speed_kmh = = 3")
+    with pytest.raises(CaseError, match="valid TOML"):
+        load_case(bad)
+    with pytest.raises(CaseError, match="readable TOML file"):
+        load_case(tmp_path / "nope.toml")
+
+
+def test_cli_prints_one_line_and_writes_nothing(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('preset = "wang2017_metro"\n[vehicle]\ncarbody_mass = -1.0\n')
+    out = tmp_path / "out"
+    assert main(["run", str(bad), "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == "error: vehicle.carbody_mass = -1.0: must be > 0.0 (kg)"
+    assert not out.exists()
+
+
+def test_cli_run_writes_dataset_summary_and_plots(tmp_path):
+    case = tmp_path / "c.toml"
+    case.write_text('preset = "wang2017_metro"\n[frequency]\nf_min = 1.0\nf_max = 200.0\nstep = 1.0\n')
+    out = tmp_path / "out"
+    assert main(["run", str(case), "-o", str(out)]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert {"results.nc", "psd_acceleration.csv", "summary.csv", "summary.md",
+            "psd_wheelset.png", "psd_rail.png"} <= names
+    assert not any(n.endswith(".part") for n in names)
+    ds = railvib.load_netcdf(out / "results.nc")
+    assert ds.frf_displacement.dtype.kind == "c"
+    assert ds.sizes["frequency"] == 200
+    assert "case_toml" in ds.attrs
+
+
+def test_rail_pair_mode_doubles_beam_pads_and_contact():
+    single = railvib.build_system(railvib.load_preset_case())
+    pair = railvib.build_system(case_from_dict(_case(rail_model="rail_pair")))
+    assert pair.track.rail.bending_stiffness == 2 * single.track.rail.bending_stiffness
+    assert pair.track.rail.mass_per_length == 2 * single.track.rail.mass_per_length
+    assert pair.contact_stiffness == pytest.approx(2 * single.contact_stiffness)
+    k1 = single.track.pad.stiffness([10.0])
+    k2 = pair.track.pad.stiffness([10.0])
+    assert k2[0] == pytest.approx(2 * k1[0])
+    # physics.md §2: k_H at the 40.10 kN wheel load is 9.873e8 N/m
+    assert single.contact_stiffness == pytest.approx(9.873e8, rel=1e-3)
