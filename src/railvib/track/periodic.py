@@ -215,24 +215,27 @@ class PeriodicTrack:
                 raise CaseError(name, list(x * d), "finite positions (m)")
         bay_load, xi = _bay(x_load)
         bay_obs, eta = _bay(x_obs)
-        # wave amplitudes (a1, a2, b1, b2) for each load: [R, -L] c = B(-xi) e4
+        # wave amplitudes (a1, a2, b1, b2) for each load: [R, -L] c = B(-xi) e4, where the
+        # last column of B(-xi) is (s3, s2, s1, s0)(-xi)
         amps = np.empty((w.f.size, 4, x_load.size), dtype=complex)
-        for j, xi_j in enumerate(xi):
-            rhs = field_transfer(w.beta4, -xi_j)[:, :, 3]
-            amps[:, :, j] = np.einsum("fij,fj->fi", w._matching_inv, rhs)
-        # displacement row of B(eta) applied to each wave: (n_freq, n_obs, 2)
+        for xi_u in np.unique(xi):
+            rhs = np.stack(krylov_series(w.beta4, -xi_u)[::-1], axis=-1)
+            sol = np.einsum("fij,fj->fi", w._matching_inv, rhs)
+            amps[:, :, xi == xi_u] = sol[:, :, None]
+        # displacement of each wave at each observation point's local coordinate
         out = np.empty((w.f.size, x_obs.size, x_load.size), dtype=complex)
-        for i, eta_i in enumerate(eta):
-            row = np.stack(krylov_series(w.beta4, eta_i), axis=-1)  # (n_freq, 4)
+        for eta_u in np.unique(eta):
+            row = np.stack(krylov_series(w.beta4, eta_u), axis=-1)  # first row of B(eta)
             disp_r = np.einsum("fk,fkj->fj", row, w.right)
             disp_l = np.einsum("fk,fkj->fj", row, w.left)
-            for j in range(x_load.size):
-                if x_obs[i] >= x_load[j]:
-                    m = bay_obs[i] - bay_load[j]
-                    out[:, i, j] = np.sum(amps[:, :2, j] * w.mu**m * disp_r, axis=1)
-                else:
-                    m = bay_load[j] - bay_obs[i]
-                    out[:, i, j] = np.sum(amps[:, 2:, j] * w.mu**m * disp_l, axis=1)
+            for i in np.flatnonzero(eta == eta_u):
+                for j in range(x_load.size):
+                    if x_obs[i] >= x_load[j]:
+                        m = bay_obs[i] - bay_load[j]
+                        out[:, i, j] = np.sum(amps[:, :2, j] * w.mu**m * disp_r, axis=1)
+                    else:
+                        m = bay_load[j] - bay_obs[i]
+                        out[:, i, j] = np.sum(amps[:, 2:, j] * w.mu**m * disp_l, axis=1)
         return out * w.scale
 
     def transfer_matrix(self, f: ArrayLike) -> NDArray[np.complex128]:
@@ -329,17 +332,22 @@ def _bloch_vector(t: NDArray[np.complex128], mu: NDArray[np.complex128]) -> NDAr
     """Unit eigenvectors of ``t`` for eigenvalues ``mu``: ``(n_freq, 4, 2)``.
 
     The null vector of ``t - mu I`` is the generalised cross product of three of
-    its rows. Rows 0-2 (pure beam rows, untouched by the pad) are used, and rows
-    1-3 where that is better conditioned.
+    its rows. Rows 0-2 (pure beam rows, untouched by the pad) are used; where
+    they are nearly dependent, rows 1-3 are used instead.
     """
     m = t[:, None, :, :] - mu[:, :, None, None] * np.eye(4)  # (n_freq, 2, 4, 4)
     m = m / np.linalg.norm(m, axis=3, keepdims=True)
-    first = _cross3(m[..., 0, :], m[..., 1, :], m[..., 2, :])
-    second = _cross3(m[..., 1, :], m[..., 2, :], m[..., 3, :])
-    n1 = np.linalg.norm(first, axis=2, keepdims=True)
-    n2 = np.linalg.norm(second, axis=2, keepdims=True)
-    vec = np.where(n1 >= n2, first / n1, second / n2)
-    return np.swapaxes(vec, 1, 2)
+    vec = _cross3(m[..., 0, :], m[..., 1, :], m[..., 2, :])
+    norm = np.linalg.norm(vec, axis=2)
+    weak = norm < 1e-3  # |cross product| of unit rows: sine of their spanned volume
+    if np.any(weak):
+        alt = _cross3(m[weak][:, 1, :], m[weak][:, 2, :], m[weak][:, 3, :])
+        alt_norm = np.linalg.norm(alt, axis=1)
+        better = alt_norm > norm[weak]
+        idx = tuple(i[better] for i in np.nonzero(weak))
+        vec[idx] = alt[better]
+        norm[idx] = alt_norm[better]
+    return np.swapaxes(vec / norm[..., None], 1, 2)
 
 
 def _cross3(

@@ -111,7 +111,10 @@ class Vehicle:
     def dynamic_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
         """``K + i omega C - omega^2 M`` stacked over frequency, ``(n_freq, n_dof, n_dof)``."""
         omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
-        return self.stiffness_matrix + 1j * omega * self.damping_matrix - omega**2 * self.mass_matrix
+        out = np.empty((omega.shape[0],) + self.mass_matrix.shape, dtype=complex)
+        out.real = self.stiffness_matrix - omega**2 * self.mass_matrix
+        out.imag = omega * self.damping_matrix
+        return out
 
     def static_wheel_loads(self, gravity: float = GRAVITY) -> NDArray[np.float64]:
         """Static load carried at each wheel contact (N), wheels held rigidly.
