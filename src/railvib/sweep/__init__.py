@@ -1,0 +1,41 @@
+"""Parameter sweeps: many cases, batched, resumable, on local cores or a Dask cluster.
+
+Examples
+--------
+>>> from railvib.sweep import sweep_from_dict, SweepLayout
+>>> spec = sweep_from_dict({
+...     "case": {"preset": "wang2017_metro"},
+...     "axes": [{"field": "speed_kmh", "values": [40.0, 80.0]}],
+... })
+>>> SweepLayout(spec).shape
+(2,)
+"""
+
+from railvib.sweep.batch import compute_chunk, frf_many_speeds
+from railvib.sweep.dataset import (
+    load_sweep_dataset,
+    save_sweep_csv,
+    save_sweep_netcdf,
+    sweep_dataset,
+)
+from railvib.sweep.layout import SweepLayout
+from railvib.sweep.runner import SweepInterrupted, run_sweep
+from railvib.sweep.spec import load_sweep, sweep_from_dict
+from railvib.sweep.store import ChunkStore, SweepMismatchError, fingerprint
+
+__all__ = [
+    "ChunkStore",
+    "SweepInterrupted",
+    "SweepLayout",
+    "SweepMismatchError",
+    "compute_chunk",
+    "fingerprint",
+    "frf_many_speeds",
+    "load_sweep",
+    "load_sweep_dataset",
+    "run_sweep",
+    "save_sweep_csv",
+    "save_sweep_netcdf",
+    "sweep_dataset",
+    "sweep_from_dict",
+]

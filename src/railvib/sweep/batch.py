@@ -1,0 +1,241 @@
+"""Batched solution of many cases that share structure.
+
+Cases that differ only in speed (and irregularity) share the track receptance
+``R`` between the contact points, ``Q = (R + I/k_H)^-1`` and the condensed
+system matrix ``A = D_v + B Q B^T``; only the excitation ``v_j = exp(-i 2 pi f
+t_j)``, ``t_j = s_j / v``, changes. One ``numpy.linalg.solve`` with one
+right-hand side per speed then serves all of them. Cases whose vehicle or
+contact differ but whose track and wheel positions agree still share ``R``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.case import Case, build_grid, build_spectrum, build_system, case_from_dict
+from railvib.case.load import merge_case_dicts
+from railvib.coupling import CoupledSystem
+from railvib.pem import excitation_vector, wheel_delays
+from railvib.results.stats import summary
+from railvib.sweep.layout import SweepLayout, is_cheap_field
+from railvib.sweep.spec import nested_override
+from railvib.units import kmh_to_ms
+
+__all__ = [
+    "BatchFRF",
+    "case_labels",
+    "compute_chunk",
+    "frf_many_speeds",
+    "summary_names",
+]
+
+
+@dataclass(frozen=True, eq=False)
+class BatchFRF:
+    """Complex responses per unit irregularity for several speeds of one system.
+
+    Attributes
+    ----------
+    vehicle : numpy.ndarray
+        Vehicle DOF displacements, ``(n_speed, n_freq, n_dof)``, m/m (rad/m for pitch).
+    rail : numpy.ndarray
+        Rail displacement under each wheel, ``(n_speed, n_freq, n_wheel)``, m/m.
+    contact_force : numpy.ndarray
+        Contact force at each wheel, ``(n_speed, n_freq, n_wheel)``, N/m.
+    """
+
+    vehicle: NDArray[np.complex128]
+    rail: NDArray[np.complex128]
+    contact_force: NDArray[np.complex128]
+
+
+def frf_many_speeds(
+    system: CoupledSystem,
+    f: ArrayLike,
+    speeds: ArrayLike,
+    receptance: NDArray[np.complex128] | None = None,
+) -> BatchFRF:
+    """Solve the coupled FRFs of `system` at several speeds in one batched solve.
+
+    Equals :meth:`railvib.coupling.CoupledSystem.frf` at each speed (the speed
+    of `system` itself is ignored).
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track, contact stiffness and wheel positions.
+    f : array_like
+        Frequencies in Hz, ``(n_freq,)``.
+    speeds : array_like
+        Vehicle speeds in m/s, ``(n_speed,)``, each > 0.
+    receptance : numpy.ndarray, optional
+        Rail receptance between the contact points, ``(n_freq, n_wheel, n_wheel)``
+        in m/N, if already known (it depends on the track and wheel positions only).
+
+    Returns
+    -------
+    BatchFRF
+    """
+    f = np.atleast_1d(np.asarray(f, dtype=float))
+    speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+    x = system.wheel_positions
+    n_wheel = x.size
+    rec = system.track.receptance(f, x, x) if receptance is None else receptance
+    q = np.linalg.inv(rec + np.eye(n_wheel) / system.contact_stiffness)
+    b = system.vehicle.wheel_matrix
+    # excitation of every speed as columns: (n_freq, n_wheel, n_speed)
+    v = np.stack(
+        [excitation_vector(f, wheel_delays(system.vehicle.wheel_offsets, s)) for s in speeds],
+        axis=-1,
+    )
+    qv = q @ v
+    a = system.vehicle.dynamic_stiffness(f) + b @ q @ b.T
+    u_v = np.linalg.solve(a, b @ qv)  # (n_freq, n_dof, n_speed)
+    force = q @ (b.T @ u_v) - qv
+    rail = rec @ force
+    return BatchFRF(
+        vehicle=np.moveaxis(u_v, -1, 0),
+        rail=np.moveaxis(rail, -1, 0),
+        contact_force=np.moveaxis(force, -1, 0),
+    )
+
+
+def case_labels(system: CoupledSystem) -> list[str]:
+    """Response labels of a run: vehicle DOFs, then ``rail@wheel<j>``."""
+    n_wheel = system.vehicle.wheel_offsets.size
+    return list(system.vehicle.dofs) + [f"rail@wheel{j + 1}" for j in range(n_wheel)]
+
+
+def summary_names(bands: list[tuple[float, float]] | list[list[float]]) -> list[str]:
+    """Names of the summary variables of :func:`railvib.results.summary`."""
+    return ["peak", "dominant_frequency", "rms"] + [f"rms_{lo:g}_{hi:g}_hz" for lo, hi in bands]
+
+
+def _key(d: Any) -> str:
+    return json.dumps(d, sort_keys=True)
+
+
+def _track_key(case: dict[str, Any]) -> str:
+    """Everything the rail receptance between the contact points depends on."""
+    veh = case["vehicle"]
+    return _key(
+        [
+            case["track"],
+            case["rail_model"],
+            case["contact"]["leading_wheel_position"],
+            veh["bogie_half_spacing"],
+            veh["wheelset_half_spacing"],
+        ]
+    )
+
+
+def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]]:
+    """Solve every case of one chunk of a sweep, batching cases that share structure.
+
+    Parameters
+    ----------
+    spec : dict
+        A resolved sweep (:func:`railvib.sweep.spec.sweep_from_dict`).
+    chunk_id : int
+        Chunk number (C order over the chunk grid).
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        Per-frequency variables ``(n_case, n_freq, n_resp or n_wheel)``
+        (``irregularity_psd``: ``(n_case, n_freq)``) and summary variables
+        ``(n_case, n_resp)``; cases in C order over the chunk block.
+    """
+    layout = SweepLayout(spec)
+    base = spec["base_case"]
+    base_case = case_from_dict(base)
+    f = build_grid(base_case).f
+    omega4 = (2.0 * np.pi * f) ** 4
+    cheap = [is_cheap_field(ax["field"]) for ax in spec["axes"]]
+
+    cases: list[dict[str, Any]] = []
+    groups: dict[str, list[int]] = {}
+    for i, index in enumerate(layout.chunk_indices(chunk_id)):
+        full = base
+        struct_override: dict[str, Any] = {}
+        for (field, value), is_cheap in zip(layout.overrides(index), cheap, strict=True):
+            full = merge_case_dicts(full, nested_override(field, value))
+            if not is_cheap:
+                struct_override[field] = value
+        cases.append(full)
+        groups.setdefault(_key(struct_override), []).append(i)
+
+    n_case = len(cases)
+    frf_all: NDArray[np.complex128] | None = None
+    force_all: NDArray[np.complex128] | None = None
+    s_r = np.empty((n_case, f.size))
+    receptances: dict[str, NDArray[np.complex128]] = {}
+    spectra: dict[str, Any] = {}
+    for members in groups.values():
+        case = case_from_dict(cases[members[0]])
+        system = build_system(case)
+        tkey = _track_key(cases[members[0]])
+        if tkey not in receptances:
+            x = system.wheel_positions
+            receptances[tkey] = system.track.receptance(f, x, x)
+        speeds = sorted({cases[i]["speed_kmh"] for i in members})
+        batch = frf_many_speeds(
+            system, f, [kmh_to_ms(s) for s in speeds], receptance=receptances[tkey]
+        )
+        if frf_all is None:
+            n_resp = batch.vehicle.shape[2] + batch.rail.shape[2]
+            frf_all = np.empty((n_case, f.size, n_resp), dtype=complex)
+            force_all = np.empty((n_case, f.size, batch.rail.shape[2]), dtype=complex)
+            labels = case_labels(system)
+        assert force_all is not None
+        for i in members:
+            k = speeds.index(cases[i]["speed_kmh"])
+            frf_all[i] = np.concatenate([batch.vehicle[k], batch.rail[k]], axis=1)
+            force_all[i] = batch.contact_force[k]
+            ikey = _key(cases[i]["irregularity"])
+            if ikey not in spectra:
+                spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
+            s_r[i] = spectra[ikey].temporal(f, kmh_to_ms(cases[i]["speed_kmh"]))
+    assert frf_all is not None
+    assert force_all is not None
+
+    psd_u = np.abs(frf_all) ** 2 * s_r[:, :, None]
+    psd_a = psd_u * omega4[None, :, None]
+    out: dict[str, NDArray[Any]] = {}
+    for name in spec["variables"]:
+        if name == "psd_acceleration":
+            out[name] = psd_a
+        elif name == "psd_displacement":
+            out[name] = psd_u
+        elif name == "psd_force":
+            out[name] = np.abs(force_all) ** 2 * s_r[:, :, None]
+        elif name == "irregularity_psd":
+            out[name] = s_r
+    target = psd_a if spec["summary_variable"] == "psd_acceleration" else psd_u
+    da = xr.DataArray(
+        target,
+        dims=("case", "frequency", "response"),
+        coords={"frequency": f, "response": labels},
+        attrs={"units": ""},
+    )
+    stats = summary(
+        xr.Dataset({"psd": da}),
+        bands=[tuple(b) for b in base["output"]["rms_bands"]],
+        variable="psd",
+    )
+    for name in summary_names(base["output"]["rms_bands"]):
+        out[f"summary/{name}"] = stats[name].transpose("case", "response").values
+    return out
+
+
+def _with_irregularity(case: Case, full: dict[str, Any]) -> Case:
+    """`case` with the irregularity table of the case dict `full` (validated)."""
+    if full["irregularity"] == case.irregularity:
+        return case
+    return case.model_copy(update={"irregularity": full["irregularity"]})

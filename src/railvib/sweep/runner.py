@@ -1,0 +1,175 @@
+"""Run the missing chunks of a sweep: serially, on local processes, or on a Dask cluster.
+
+Whatever the executor, the chunks are the same and computed by the same
+function (:func:`railvib.sweep.batch.compute_chunk`), so the results are
+identical bit for bit. Only this (client) process writes chunk files.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+import sys
+from collections.abc import Callable, Iterator
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from contextlib import AbstractContextManager, nullcontext
+from pathlib import Path
+from typing import Any
+
+import xarray as xr
+from numpy.typing import NDArray
+
+from railvib.errors import RailvibError
+from railvib.sweep.batch import compute_chunk
+from railvib.sweep.store import ChunkStore
+
+__all__ = ["SweepInterrupted", "run_sweep"]
+
+ChunkResult = tuple[int, dict[str, NDArray[Any]]]
+
+
+class SweepInterrupted(RailvibError):
+    """A worker died or the run was stopped; finished chunks are kept."""
+
+
+def _compute(spec: dict[str, Any], chunk_id: int) -> ChunkResult:
+    return chunk_id, compute_chunk(spec, chunk_id)
+
+
+def run_sweep(
+    spec: dict[str, Any],
+    out: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = True,
+    overwrite: bool = False,
+    assemble: bool = True,
+) -> xr.Dataset | None:
+    """Compute the missing chunks of a sweep and assemble its Zarr store.
+
+    Parameters
+    ----------
+    spec : dict
+        A resolved sweep (:func:`railvib.sweep.load_sweep`).
+    out : str or pathlib.Path
+        Output folder; finished chunks found there are kept (resume).
+    workers : int, optional
+        Local worker processes (default: all cores); ``1`` runs in this process.
+        Ignored with `scheduler`.
+    scheduler : str, optional
+        Address of a Dask distributed scheduler (``tcp://host:8786``), or a
+        ``distributed.Client`` object.
+    progress : bool
+        Show a progress bar (cases done, rate, time left).
+    overwrite : bool
+        Discard chunks of a different sweep in `out` instead of refusing.
+    assemble : bool
+        Write ``sweep.zarr`` and return the dataset when all chunks are done.
+
+    Returns
+    -------
+    xarray.Dataset or None
+        The sweep dataset (None when `assemble` is false).
+
+    Raises
+    ------
+    SweepMismatchError
+        `out` holds chunks of a different sweep.
+    SweepInterrupted
+        A local worker process died; rerun to resume.
+    """
+    store = ChunkStore(out, spec)
+    store.open(overwrite=overwrite)
+    todo = store.missing()
+    lay = store.layout
+    sizes = {cid: _n(lay.chunk_shape(cid)) for cid in todo}
+    with _progress(progress, lay.n_cases, lay.n_cases - sum(sizes.values())) as advance:
+        if scheduler is not None:
+            results = _dask(spec, todo, scheduler)
+        elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
+            results = (_compute(spec, cid) for cid in todo)
+        else:
+            results = _local(spec, todo, workers or os.cpu_count() or 1)
+        for cid, arrays in results:
+            store.write(cid, arrays)
+            advance(sizes[cid])
+    if not assemble:
+        return None
+    ds = store.assemble()
+    store.write_zarr(ds)
+    return ds
+
+
+def _n(shape: tuple[int, ...]) -> int:
+    n = 1
+    for s in shape:
+        n *= s
+    return n
+
+
+def _mp_context() -> Any:
+    if sys.platform.startswith("linux"):
+        ctx = mp.get_context("forkserver")
+        ctx.set_forkserver_preload(["railvib.sweep.batch"])
+        return ctx
+    return mp.get_context("spawn")
+
+
+def _local(spec: dict[str, Any], todo: list[int], workers: int) -> Iterator[ChunkResult]:
+    """Chunks on local processes, at most 2 queued per worker; yields as they finish."""
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(todo)), mp_context=_mp_context())
+    pending: set[Future[ChunkResult]] = set()
+    queue = list(reversed(todo))
+    try:
+        while queue or pending:
+            while queue and len(pending) < 2 * workers:
+                pending.add(pool.submit(_compute, spec, queue.pop()))
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in done:
+                try:
+                    yield fut.result()
+                except BrokenProcessPool:
+                    raise SweepInterrupted(
+                        "a worker process died; the finished chunks are saved - rerun the "
+                        "same command to compute the rest"
+                    ) from None
+    finally:
+        for fut in pending:
+            fut.cancel()
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _dask(spec: dict[str, Any], todo: list[int], scheduler: Any) -> Iterator[ChunkResult]:
+    """Chunks on a Dask distributed cluster; yields as they finish."""
+    from distributed import Client, as_completed
+
+    own = isinstance(scheduler, str)
+    client = Client(scheduler) if own else scheduler
+    try:
+        spec_future = client.scatter(spec, broadcast=True)
+        futures = [
+            client.submit(_compute, spec_future, cid, key=f"railvib-chunk-{cid}-{id(spec)}",
+                          pure=False)
+            for cid in todo
+        ]
+        try:
+            for fut in as_completed(futures):
+                yield fut.result()
+                fut.release()
+        finally:
+            client.cancel(futures)
+    finally:
+        if own:
+            client.close()
+
+
+def _progress(
+    enabled: bool, total: int, done: int
+) -> AbstractContextManager[Callable[[int], None]]:
+    if not enabled:
+        return nullcontext(lambda n: None)
+    from railvib.sweep.progress import case_progress
+
+    return case_progress(total, done)
