@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, SolverWarning
 from railvib.pads import Hysteretic, SpringDamper
 from railvib.track import PeriodicTrack, Rail
 
@@ -118,3 +118,18 @@ def test_invalid_track_inputs_are_named():
     track = PeriodicTrack(Rail(6.62e6, 60.64), SpringDamper(5e7), 0.6)
     with pytest.raises(CaseError, match="frequency"):
         track.receptance([0.0, 1.0], [0.0], [0.0])
+
+
+def test_pinned_pinned_frequency_is_finite_and_flagged(paper_track):
+    # f_pp = (pi/d)^2 sqrt(EI/m) / 2 pi = 1441.67 Hz (physics.md §3.5)
+    f_pp = (np.pi / 0.6) ** 2 * np.sqrt(6.62e6 / 60.64) / (2 * np.pi)
+    with pytest.warns(SolverWarning, match="pinned-pinned"):
+        a = paper_track.receptance([f_pp], [0.3], [0.3])
+    assert np.all(np.isfinite(a))
+    # close to it the mid-span receptance grows as |f - f_pp|^(-1/2): 1e-3 -> 1e-5 is 10x
+    near = paper_track.receptance(f_pp * np.array([1 - 1e-3, 1 - 1e-5]), [0.3], [0.3])
+    ratio = np.abs(near[1, 0, 0]) / np.abs(near[0, 0, 0])
+    assert ratio == pytest.approx(10.0, rel=0.05)
+    # a small rail loss factor regularises it (no warning)
+    damped = PeriodicTrack(Rail(6.62e6, 60.64, 0.01), SpringDamper(5e7, 5e4), 0.6)
+    assert np.abs(damped.receptance([f_pp], [0.3], [0.3])).max() < 1e-8

@@ -15,16 +15,20 @@ Positions ``x`` are measured along the rail in m, with sleepers at ``x = n d``.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, SolverWarning
 from railvib.pads.base import PadModel
 from railvib.track.beam import dynamic_stiffness, field_transfer, krylov_series
 
 __all__ = ["PeriodicTrack", "Rail", "TrackWaves"]
+
+#: wave-matching condition number above which results are flagged with a SolverWarning
+CONDITION_WARNING = 1e7
 
 #: where ``| |mu| - 1 |`` is below this, waves are sorted by energy flow, not modulus
 ENERGY_FLOW_TOLERANCE = 1e-6
@@ -173,6 +177,8 @@ class PeriodicTrack:
         right = np.where(swap[:, None, :], vec_l, vec_r)
         left = np.where(swap[:, None, :], vec_r, vec_l)
         matching = np.concatenate([right, -left], axis=2)
+        matching_inv = np.linalg.inv(matching)
+        _warn_if_ill_conditioned(f, matching, matching_inv)
         return TrackWaves(
             f=f,
             beta4=self._beta4(f),
@@ -180,7 +186,7 @@ class PeriodicTrack:
             right=right,
             left=left,
             scale=self.sleeper_spacing**3 / self.rail.complex_bending_stiffness,
-            _matching_inv=np.linalg.inv(matching),
+            _matching_inv=matching_inv,
         )
 
     # -- public physics -------------------------------------------------------------------
@@ -293,6 +299,27 @@ class PeriodicTrack:
         c[2, 3] = ei / d**3
         c[3, 2] = -ei / d**2
         return c, np.linalg.inv(c)
+
+
+def _warn_if_ill_conditioned(
+    f: NDArray[np.float64], matching: NDArray[np.complex128], inverse: NDArray[np.complex128]
+) -> None:
+    """Warn where left- and right-going waves (nearly) coincide: the pinned-pinned resonance.
+
+    There the undamped rail's mid-span receptance really diverges, as |f - f_pp|^(-1/2); the
+    result stays finite but carries fewer correct digits.
+    """
+    estimate = np.abs(matching).max(axis=(1, 2)) * np.abs(inverse).max(axis=(1, 2)) * 4.0
+    bad = estimate > CONDITION_WARNING
+    if np.any(bad):
+        warnings.warn(
+            f"{int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) lie at a pinned-pinned "
+            f"resonance of the undamped rail (wave-matching condition number "
+            f"~{estimate.max():.1e}); the mid-span response there is physically unbounded. "
+            "Set track.rail.loss_factor (e.g. 0.01) or move the grid point.",
+            SolverWarning,
+            stacklevel=3,
+        )
 
 
 def _as_freq(f: ArrayLike) -> NDArray[np.float64]:
