@@ -57,8 +57,10 @@ def main():
 
     print(f"frequencies                      : {len(grid)} (0.5-1000 Hz, 0.1 Hz steps)")
     print(f"symplectic + PEM, whole case     : {t_pem * 1e3:8.1f} ms (median of 7, one core)")
-    print(f"finite track receptance only     : {t_finite:8.1f} s  "
-          f"(measured {t_sub:.2f} s for {subset.size} frequencies, scaled)")
+    print(
+        f"finite track receptance only     : {t_finite:8.1f} s  "
+        f"(measured {t_sub:.2f} s for {subset.size} frequencies, scaled)"
+    )
     print(f"finite vs symplectic receptance  : max relative difference {err:.1e}")
     print(f"ratio finite / symplectic        : {t_finite / t_pem:8.0f}x")
     print("goal: <= 0.1 s and >= 100x")

@@ -19,19 +19,36 @@ import scipy.sparse.linalg as spla
 def hermite_element(ei: complex, m: float, length: float) -> tuple[np.ndarray, np.ndarray]:
     """Stiffness and consistent mass of a Hermite beam element (w1, t1, w2, t2)."""
     L = length
-    k = ei / L**3 * np.array(
-        [[12, 6 * L, -12, 6 * L], [6 * L, 4 * L**2, -6 * L, 2 * L**2],
-         [-12, -6 * L, 12, -6 * L], [6 * L, 2 * L**2, -6 * L, 4 * L**2]]
+    k = (
+        ei
+        / L**3
+        * np.array(
+            [
+                [12, 6 * L, -12, 6 * L],
+                [6 * L, 4 * L**2, -6 * L, 2 * L**2],
+                [-12, -6 * L, 12, -6 * L],
+                [6 * L, 2 * L**2, -6 * L, 4 * L**2],
+            ]
+        )
     )
-    mm = m * L / 420 * np.array(
-        [[156, 22 * L, 54, -13 * L], [22 * L, 4 * L**2, 13 * L, -3 * L**2],
-         [54, 13 * L, 156, -22 * L], [-13 * L, -3 * L**2, -22 * L, 4 * L**2]]
+    mm = (
+        m
+        * L
+        / 420
+        * np.array(
+            [
+                [156, 22 * L, 54, -13 * L],
+                [22 * L, 4 * L**2, 13 * L, -3 * L**2],
+                [54, 13 * L, 156, -22 * L],
+                [-13 * L, -3 * L**2, -22 * L, 4 * L**2],
+            ]
+        )
     )
     return k, mm
 
 
 class FiniteTrack:
-    """Rail from sleeper ``-n_bays`` to sleeper ``+n_bays`` (positions ``n d``), pads at sleepers."""
+    """Rail from sleeper ``-n_bays`` to ``+n_bays`` (at ``n d``), with pads at the sleepers."""
 
     def __init__(self, ei, m, pad_k, pad_c, d, n_bays=300, n_sub=12, absorber_bays=100):
         self.d, self.n_sub = d, n_sub

@@ -31,21 +31,30 @@ def test_preset_loads_and_template_round_trips(tmp_path):
         ({"speed_kmh": 0.0}, "speed_kmh = 0.0: must be > 0.0 (km/h)"),
         ({"speed_kmh": "fast"}, "speed_kmh = 'fast': must be a number (km/h)"),
         ({"track": {"sleeper_spacing": -0.6}}, "track.sleeper_spacing = -0.6: must be > 0.0 (m)"),
-        ({"track": {"rail": {"bending_stiffness": 0.0}}},
-         "track.rail.bending_stiffness = 0.0: must be > 0.0 (N m^2)"),
-        ({"track": {"pad": {"stiffness_n_per_m": -5e7}}}, "track.pad.stiffness_n_per_m = -50000000.0"),
+        (
+            {"track": {"rail": {"bending_stiffness": 0.0}}},
+            "track.rail.bending_stiffness = 0.0: must be > 0.0 (N m^2)",
+        ),
+        (
+            {"track": {"pad": {"stiffness_n_per_m": -5e7}}},
+            "track.pad.stiffness_n_per_m = -50000000.0",
+        ),
         ({"vehicle": {"wheel_mass": 3.0}}, "vehicle.wheel_mass = 3.0: unknown key; allowed here:"),
         ({"colour": "red"}, "colour = 'red': unknown key"),
         ({"frequency": {"f_min": 10.0, "f_max": 5.0}}, "frequency.f_max = 5.0: must be > f_min"),
         ({"frequency": {"f_min": -1.0}}, "frequency.f_min = -1.0: must be > 0.0 (Hz)"),
         ({"frequency": {"spacing": "log", "step": None}}, "frequency.n = None: required"),
         ({"rail_model": "three_rails"}, "rail_model = 'three_rails': must be one of"),
-        ({"contact": {"leading_wheel_position": -0.1}},
-         "contact.leading_wheel_position = -0.1: must be >= 0.0 (m)"),
+        (
+            {"contact": {"leading_wheel_position": -0.1}},
+            "contact.leading_wheel_position = -0.1: must be >= 0.0 (m)",
+        ),
         ({"irregularity": {"type": "fra", "class_number": 9}}, "irregularity.class_number = 9"),
         ({"track": {"pad": {"model": "rubber_duck"}}}, "track.pad.model = 'rubber_duck'"),
-        ({"vehicle": {"wheelset_half_spacing": 7.0}},
-         "vehicle.wheelset_half_spacing = 7.0: must be < bogie_half_spacing = 6.3 (m)"),
+        (
+            {"vehicle": {"wheelset_half_spacing": 7.0}},
+            "vehicle.wheelset_half_spacing = 7.0: must be < bogie_half_spacing = 6.3 (m)",
+        ),
     ],
 )
 def test_rejections_name_field_value_and_allowed(overrides, message):
@@ -56,13 +65,17 @@ def test_rejections_name_field_value_and_allowed(overrides, message):
 def test_missing_value_is_rejected():
     data = railvib.presets.load_preset("wang2017_metro")
     del data["vehicle"]["wheelset_mass"]
-    with pytest.raises(CaseError, match=re.escape("vehicle.wheelset_mass = '<missing>': required (kg)")):
+    with pytest.raises(
+        CaseError, match=re.escape("vehicle.wheelset_mass = '<missing>': required (kg)")
+    ):
         case_from_dict(data)
 
 
 def test_leading_wheel_beyond_spacing_is_rejected():
     case = case_from_dict(_case(contact={"leading_wheel_position": 0.6}))
-    with pytest.raises(CaseError, match=re.escape("contact.leading_wheel_position = 0.6: must be in [0, 0.6) (m)")):
+    with pytest.raises(
+        CaseError, match=re.escape("contact.leading_wheel_position = 0.6: must be in [0, 0.6) (m)")
+    ):
         railvib.build_system(case)
 
 
@@ -87,12 +100,20 @@ def test_cli_prints_one_line_and_writes_nothing(tmp_path, capsys):
 
 def test_cli_run_writes_dataset_summary_and_plots(tmp_path):
     case = tmp_path / "c.toml"
-    case.write_text('preset = "wang2017_metro"\n[frequency]\nf_min = 1.0\nf_max = 200.0\nstep = 1.0\n')
+    case.write_text(
+        'preset = "wang2017_metro"\n[frequency]\nf_min = 1.0\nf_max = 200.0\nstep = 1.0\n'
+    )
     out = tmp_path / "out"
     assert main(["run", str(case), "-o", str(out)]) == 0
     names = {p.name for p in out.iterdir()}
-    assert {"results.nc", "psd_acceleration.csv", "summary.csv", "summary.md",
-            "psd_wheelset.png", "psd_rail.png"} <= names
+    assert {
+        "results.nc",
+        "psd_acceleration.csv",
+        "summary.csv",
+        "summary.md",
+        "psd_wheelset.png",
+        "psd_rail.png",
+    } <= names
     assert not any(n.endswith(".part") for n in names)
     ds = railvib.load_netcdf(out / "results.nc")
     assert ds.frf_displacement.dtype.kind == "c"

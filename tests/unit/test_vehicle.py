@@ -2,13 +2,12 @@
 
 import numpy as np
 import pytest
+from conftest import PAPER_VEHICLE_PARAMS as P  # noqa: I001
 from scipy.linalg import eigh
 
 from railvib.errors import CaseError
 from railvib.vehicle import RigidBody, Suspension, Vehicle, Wheel
 from railvib.vehicle.parts import Attachment
-
-from conftest import PAPER_VEHICLE_PARAMS as P  # noqa: I001
 
 
 def _two_dof_frequencies(m1, k11, k12, m2, k22):
@@ -30,8 +29,12 @@ def clamped_wheel_frequencies(vehicle):
 
 
 def test_rigid_track_frequencies_match_closed_forms(paper_vehicle):
-    k1, k2, lc, lt = P.primary_stiffness, P.secondary_stiffness, P.bogie_half_spacing, \
-        P.wheelset_half_spacing
+    k1, k2, lc, lt = (
+        P.primary_stiffness,
+        P.secondary_stiffness,
+        P.bogie_half_spacing,
+        P.wheelset_half_spacing,
+    )
     # bogie pitch: two primary springs at +-l_t, decoupled: w^2 = 2 K1 lt^2 / Jt (twice)
     f_bogie_pitch = np.sqrt(2 * k1 * lt**2 / P.bogie_pitch_inertia) / (2 * np.pi)
     # symmetric bounce, both bogies at zt: Mc zc'' = -2 K2 (zc - zt);
@@ -76,5 +79,8 @@ def test_bad_parts_are_rejected_with_field_names():
     with pytest.raises(CaseError, match=r"vehicle\.s\.stiffness = 0\.0"):
         Suspension("s", Attachment("a", 0), Attachment("a", 0), 0.0)
     with pytest.raises(CaseError, match="a body among"):
-        Vehicle((body,), (Suspension("s", Attachment("a", 0), Attachment("zz", 0), 1.0),),
-                (Wheel("a", 0.0),))
+        Vehicle(
+            (body,),
+            (Suspension("s", Attachment("a", 0), Attachment("zz", 0), 1.0),),
+            (Wheel("a", 0.0),),
+        )

@@ -13,8 +13,8 @@ import pytest
 
 from railvib.coupling import CoupledSystem
 from railvib.grid import FrequencyGrid
-from railvib.spectra import Combined, FRAClass, ShiTai
 from railvib.solve import run_system
+from railvib.spectra import Combined, FRAClass, ShiTai
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "reference"))
 from finite_track import FiniteTrack  # noqa: E402

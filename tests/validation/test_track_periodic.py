@@ -62,8 +62,9 @@ def test_paper_track_matches_brute_force_numbers_in_physics_notes(paper_track):
     # physics.md §6.1 "discrete seed track" (brute-force finite model, 4 digits)
     f = np.array([1.0, 50.8, 186.0, 996.0, 2000.0])
     above = np.abs(paper_track.receptance(f, [0.0], [0.0])[:, 0, 0])
-    np.testing.assert_allclose(above, [7.961e-9, 8.088e-9, 7.103e-9, 6.768e-10, 1.950e-10],
-                               rtol=1e-3)
+    np.testing.assert_allclose(
+        above, [7.961e-9, 8.088e-9, 7.103e-9, 6.768e-10, 1.950e-10], rtol=1e-3
+    )
     f_mid = np.array([1.0, 186.0, 996.0, 2000.0])
     mid = np.abs(paper_track.receptance(f_mid, [0.3], [0.3])[:, 0, 0])
     np.testing.assert_allclose(mid, [8.048e-9, 7.165e-9, 6.281e-10, 2.602e-10], rtol=1e-3)
@@ -72,8 +73,16 @@ def test_paper_track_matches_brute_force_numbers_in_physics_notes(paper_track):
 @pytest.fixture(scope="module")
 def finite_reference():
     pad = SpringDamper(5.0e7, 5.0e4)
-    return FiniteTrack(EI, M, pad.stiffness_n_per_m, pad.damping_ns_per_m, 0.6,
-                       n_bays=300, n_sub=12, absorber_bays=100)
+    return FiniteTrack(
+        EI,
+        M,
+        pad.stiffness_n_per_m,
+        pad.damping_ns_per_m,
+        0.6,
+        n_bays=300,
+        n_sub=12,
+        absorber_bays=100,
+    )
 
 
 F_FINITE = np.concatenate([np.geomspace(1.0, 1400.0, 45), np.geomspace(1480.0, 2000.0, 5)])

@@ -23,7 +23,9 @@ __all__ = [
 ]
 
 
-def quantity(unit: str, doc: str, *, gt: float | None = 0.0, ge: float | None = None, **kw: Any) -> Any:
+def quantity(
+    unit: str, doc: str, *, gt: float | None = 0.0, ge: float | None = None, **kw: Any
+) -> Any:
     """A required physical field with its unit and one-line documentation."""
     if ge is not None:
         gt = None

@@ -15,7 +15,7 @@ __all__ = ["cli", "main"]
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="railvib")
 def cli() -> None:
-    """railvib: random vibration of a vehicle on an infinite periodic track.
+    r"""railvib: random vibration of a vehicle on an infinite periodic track.
 
     \b
     railvib reproduce            the paper's study (figures, table, HTML report)
@@ -32,8 +32,13 @@ def cli() -> None:
 @cli.command()
 @click.argument("case_file", type=click.Path(dir_okay=False, path_type=Path))
 @click.option(
-    "-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
-    default=Path("railvib-out"), show_default=True, help="output folder",
+    "-o",
+    "--output",
+    "outdir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("railvib-out"),
+    show_default=True,
+    help="output folder",
 )
 @click.option("--no-plots", is_flag=True, help="skip the PNG figures")
 def run(case_file: Path, outdir: Path, no_plots: bool) -> None:

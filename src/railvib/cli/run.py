@@ -14,7 +14,7 @@ __all__ = ["run_case_command"]
 
 
 def run_case_command(case_file: Path, outdir: Path, plots: bool = True) -> None:
-    """Validate, run and write: ``results.nc``, ``psd_acceleration.csv``, ``summary.csv/.md``, PNGs."""
+    """Validate, run and write ``results.nc``, PSD CSVs, ``summary.csv/.md`` and PNGs."""
     case = load_case(case_file)
     ds = run(case)
     outdir.mkdir(parents=True, exist_ok=True)

@@ -1,0 +1,1 @@
+"""Plotting: functions take result datasets and return matplotlib axes or figures."""

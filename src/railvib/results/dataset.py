@@ -69,21 +69,30 @@ def build_dataset(
         "psd_acceleration": (
             ("frequency", "response"),
             psd_a,
-            {"units": units.ACCELERATION_PSD, "long_name": "acceleration PSD",
-             "note": "pitch responses are in (rad/s^2)^2/Hz"},
+            {
+                "units": units.ACCELERATION_PSD,
+                "long_name": "acceleration PSD",
+                "note": "pitch responses are in (rad/s^2)^2/Hz",
+            },
         ),
         "psd_displacement": (
             ("frequency", "response"),
             psd_u,
-            {"units": units.DISPLACEMENT_PSD, "long_name": "displacement PSD",
-             "note": "pitch responses are in rad^2/Hz"},
+            {
+                "units": units.DISPLACEMENT_PSD,
+                "long_name": "displacement PSD",
+                "note": "pitch responses are in rad^2/Hz",
+            },
         ),
         "frf_displacement": (
             ("frequency", "response"),
             frf,
-            {"units": "m/m", "long_name": "displacement per unit irregularity (complex)",
-             "note": "pitch responses are in rad/m; exp(+i omega t); input = profile at the "
-             "leading wheel"},
+            {
+                "units": "m/m",
+                "long_name": "displacement per unit irregularity (complex)",
+                "note": "pitch responses are in rad/m; exp(+i omega t); input = profile at the "
+                "leading wheel",
+            },
         ),
         "psd_force": (
             ("frequency", "wheel"),

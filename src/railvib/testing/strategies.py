@@ -73,8 +73,6 @@ def case_overrides() -> st.SearchStrategy[dict[str, Any]]:
                     "pad": pad_tables(),
                 }
             ),
-            "contact": st.fixed_dictionaries(
-                {"leading_wheel_position": st.floats(0.0, 0.499)}
-            ),
+            "contact": st.fixed_dictionaries({"leading_wheel_position": st.floats(0.0, 0.499)}),
         }
     )

@@ -33,9 +33,7 @@ def _n_terms(beta4: NDArray[np.complex128], length: float) -> int:
     return max(6, math.ceil((2.72 * z + 34.0) / 4.0))
 
 
-def krylov_series(
-    beta4: ArrayLike, length: float
-) -> tuple[NDArray[np.complex128], ...]:
+def krylov_series(beta4: ArrayLike, length: float) -> tuple[NDArray[np.complex128], ...]:
     """Scaled Krylov functions ``(S, T/b, U/b^2, V/b^3)`` and ``b^4`` at length `length`.
 
     With ``z = b x`` and ``zeta = z^4 = beta4 x^4``:
