@@ -1,0 +1,200 @@
+"""How each of the paper's numbers is read from our PSD curves.
+
+Every function takes the study results (case key -> result dataset of
+:func:`railvib.run`) and keyword arguments from :data:`railvib.reproduce.study.PAPER_NUMBERS`,
+and returns one float. Bands are inclusive, in Hz; peaks are grid maxima (no
+interpolation), so a frequency is exact to the grid step (0.1 Hz in the presets).
+All PSDs are the ``psd_acceleration`` variable: one-sided, per Hz, in m^2/s^4/Hz.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+from scipy.ndimage import uniform_filter1d
+from scipy.signal import find_peaks
+
+from railvib.results.stats import band_rms, dominant_frequency
+from railvib.results.stats import peak as _peak
+
+__all__ = [
+    "METRICS",
+    "Results",
+    "comb_period_hz",
+    "comb_spacing",
+    "crossover",
+    "envelope_peak_frequency",
+    "frequency_shift",
+    "headline_ratio",
+    "headline_shift",
+    "peak",
+    "peak_difference",
+    "peak_frequency",
+    "peak_ratio",
+    "psd",
+    "rms_ratio",
+    "rms_spread",
+]
+
+Results = Mapping[str, xr.Dataset]
+Band = tuple[float, float]
+
+
+def psd(results: Results, case: str, response: str) -> xr.DataArray:
+    """Acceleration PSD of `response` in `case`, (m/s^2)^2/Hz against frequency (Hz)."""
+    return results[case]["psd_acceleration"].sel(response=response)
+
+
+def peak(results: Results, case: str, response: str, band: Band) -> float:
+    """Largest PSD value in `band` (Hz), m^2/s^4/Hz."""
+    return float(_peak(psd(results, case, response), band))
+
+
+def peak_frequency(results: Results, case: str, response: str, band: Band) -> float:
+    """Frequency (Hz) of the largest PSD value in `band` (Hz)."""
+    return float(dominant_frequency(psd(results, case, response), band))
+
+
+def peak_ratio(
+    results: Results, cases: Sequence[str], response: str, band: Band, percent: bool = False
+) -> float:
+    """Ratio of the maxima in `band` of ``cases[0]`` over ``cases[1]`` (x100 if `percent`)."""
+    num, den = (peak(results, c, response, band) for c in cases)
+    return num / den * (100.0 if percent else 1.0)
+
+
+def peak_difference(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
+    """Absolute difference of the maxima in `band` of the two cases, m^2/s^4/Hz."""
+    a, b = (peak(results, c, response, band) for c in cases)
+    return abs(a - b)
+
+
+def frequency_shift(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
+    """Peak frequency of ``cases[0]`` minus that of ``cases[1]``, in `band`, Hz."""
+    a, b = (peak_frequency(results, c, response, band) for c in cases)
+    return a - b
+
+
+def _rms(results: Results, case: str, response: str, band: Band) -> float:
+    return float(band_rms(psd(results, case, response), band))
+
+
+def rms_ratio(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
+    """RMS over `band` (Hz) of ``cases[0]`` divided by that of ``cases[1]``."""
+    num, den = (_rms(results, c, response, band) for c in cases)
+    return num / den
+
+
+def rms_spread(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
+    """Spread of the RMS over `band` (Hz) among `cases`: ``100 (max / min - 1)``, in %."""
+    values = [_rms(results, c, response, band) for c in cases]
+    return 100.0 * (max(values) / min(values) - 1.0)
+
+
+def crossover(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
+    """First frequency in `band` where ``cases[0]`` overtakes ``cases[1]``, Hz.
+
+    The first sign change from negative to positive of ``log(PSD_0 / PSD_1)`` in
+    `band`, linearly interpolated between grid points. NaN if there is none.
+    """
+    a, b = (psd(results, c, response).sel(frequency=slice(*band)) for c in cases)
+    f = a["frequency"].values
+    g = np.log(a.values / b.values)
+    up = np.flatnonzero((g[:-1] < 0.0) & (g[1:] >= 0.0))
+    if up.size == 0:
+        return float("nan")
+    i = int(up[0])
+    return float(f[i] - g[i] * (f[i + 1] - f[i]) / (g[i + 1] - g[i]))
+
+
+def comb_period_hz(ds: xr.Dataset) -> float:
+    """The wheelbase comb period ``v / (2 l_t)`` of a result, Hz.
+
+    From the dataset's speed (m/s) and the distance between the first two wheels (m).
+    """
+    x = np.asarray(ds.attrs["wheel_positions_m"], dtype=float)
+    return float(ds.attrs["speed_m_per_s"]) / abs(float(x[0] - x[1]))
+
+
+def comb_spacing(
+    results: Results,
+    case: str,
+    response: str,
+    band: Band,
+    prominence_decades: float = 0.1,
+    min_distance_hz: float = 5.0,
+) -> float:
+    """Mean spacing of the PSD peaks in `band`, Hz.
+
+    Local maxima of ``log10 PSD`` with a prominence of at least `prominence_decades`
+    and at least `min_distance_hz` apart; the spacing is ``(f_last - f_first)/(n - 1)``.
+    """
+    a = psd(results, case, response).sel(frequency=slice(*band))
+    f = a["frequency"].values
+    step = float(f[1] - f[0])
+    idx, _ = find_peaks(
+        np.log10(a.values),
+        prominence=prominence_decades,
+        distance=max(1, round(min_distance_hz / step)),
+    )
+    if idx.size < 2:
+        return float("nan")
+    return float((f[idx[-1]] - f[idx[0]]) / (idx.size - 1))
+
+
+def envelope_peak_frequency(results: Results, case: str, response: str, band: Band) -> float:
+    """Frequency (Hz) of the maximum of the PSD's overall trend in `band`.
+
+    The trend is ``log10 PSD`` smoothed by a moving mean over one wheelbase comb
+    period :func:`comb_period_hz`, which removes the comb's teeth.
+    """
+    ds = results[case]
+    a = psd(results, case, response).sel(frequency=slice(*band))
+    f = a["frequency"].values
+    window = max(1, round(comb_period_hz(ds) / float(f[1] - f[0])))
+    trend = uniform_filter1d(np.log10(a.values), size=window, mode="nearest")
+    return float(f[int(np.argmax(trend))])
+
+
+def headline_ratio(
+    results: Results, reference: str, cases: Sequence[str], response: str
+) -> float:
+    """Largest whole-grid peak among `cases` divided by the `reference` case's peak."""
+    whole = _whole(results[reference])
+    return max(peak(results, c, response, whole) for c in cases) / peak(
+        results, reference, response, whole
+    )
+
+
+def headline_shift(
+    results: Results, reference: str, cases: Sequence[str], response: str
+) -> float:
+    """Largest whole-grid dominant frequency among `cases` minus the `reference`'s, Hz."""
+    whole = _whole(results[reference])
+    return max(peak_frequency(results, c, response, whole) for c in cases) - peak_frequency(
+        results, reference, response, whole
+    )
+
+
+def _whole(ds: xr.Dataset) -> Band:
+    f = ds["frequency"].values
+    return float(f[0]), float(f[-1])
+
+
+#: reading functions by the name used in the study tables
+METRICS: Mapping[str, Callable[..., float]] = {
+    "peak": peak,
+    "peak_frequency": peak_frequency,
+    "peak_ratio": peak_ratio,
+    "peak_difference": peak_difference,
+    "frequency_shift": frequency_shift,
+    "rms_ratio": rms_ratio,
+    "rms_spread": rms_spread,
+    "crossover": crossover,
+    "comb_spacing": comb_spacing,
+    "envelope_peak_frequency": envelope_peak_frequency,
+    "headline_ratio": headline_ratio,
+    "headline_shift": headline_shift,
+}

@@ -1,0 +1,110 @@
+"""The whole reproduction: run the cases, draw the figures, compare, write the report."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+
+import pandas as pd
+import xarray as xr
+
+from railvib.reproduce.cases import load_study_cases, run_cases
+from railvib.reproduce.figures import save_figure
+from railvib.reproduce.report import write_report
+from railvib.reproduce.study import CASES, FIGURES
+from railvib.reproduce.table import compare, write_table
+from railvib.results.dataset import atomic_path
+from railvib.solve import case_toml, railvib_version
+
+__all__ = ["DEFAULT_OUTDIR", "ReproduceResult", "n_steps", "reproduce"]
+
+#: default output folder of ``railvib reproduce``
+DEFAULT_OUTDIR = Path("railvib-reproduce")
+
+
+@dataclass(frozen=True)
+class ReproduceResult:
+    """What :func:`reproduce` computed and wrote.
+
+    Parameters
+    ----------
+    outdir : pathlib.Path
+        The output folder.
+    results : dict of str to xarray.Dataset
+        Result dataset of every case, by case key.
+    table : pandas.DataFrame
+        Paper-vs-ours comparison (:func:`railvib.reproduce.table.compare`).
+    files : list of pathlib.Path
+        Every file written.
+    seconds : float
+        Wall time of the whole reproduction, s.
+    """
+
+    outdir: Path
+    results: dict[str, xr.Dataset]
+    table: pd.DataFrame
+    files: list[Path]
+    seconds: float
+
+
+def n_steps() -> int:
+    """Number of progress steps :func:`reproduce` reports (cases, figures, 3 writes)."""
+    return len(CASES) + len(FIGURES) + 3
+
+
+def reproduce(
+    outdir: str | Path = DEFAULT_OUTDIR,
+    progress: Callable[[str], None] | None = None,
+) -> ReproduceResult:
+    """Run the paper's study and write figures, table and HTML report to `outdir`.
+
+    Parameters
+    ----------
+    outdir : str or pathlib.Path
+        Output folder (created if needed). Every file is written atomically.
+    progress : callable, optional
+        Called with a short description after each of :func:`n_steps` steps.
+
+    Returns
+    -------
+    ReproduceResult
+    """
+    start = time.perf_counter()
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    tick = progress or (lambda _msg: None)
+    cases = load_study_cases()
+    results = run_cases(on_case=lambda c: tick(f"ran {c.preset}"))
+    files: list[Path] = []
+    for c in CASES:
+        path = outdir / "cases" / f"{c.preset}.toml"
+        with atomic_path(path) as tmp:
+            tmp.write_text(case_toml(cases[c.key]), encoding="utf-8")
+        files.append(path)
+    tick("wrote the resolved case files")
+    figures = []
+    for spec in FIGURES:
+        figures.append((spec, save_figure(spec, results, outdir)))
+        tick(f"drew Fig. {spec.number}")
+    files += [p for _, p in figures]
+    table = compare(results)
+    files += write_table(table, outdir)
+    tick("wrote the comparison table")
+    meta = {
+        "railvib version": railvib_version(),
+        "written": datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
+        "frequency grid": _grid_text(next(iter(results.values()))),
+        "PSD convention": str(next(iter(results.values())).attrs.get("psd_convention", "")),
+        "compute time": f"{time.perf_counter() - start:.1f} s",
+    }
+    files.append(write_report(outdir / "report.html", table, figures, cases, meta))
+    tick("wrote report.html")
+    return ReproduceResult(outdir, results, table, files, time.perf_counter() - start)
+
+
+def _grid_text(ds: xr.Dataset) -> str:
+    f = ds["frequency"].values
+    return f"{f[0]:g}-{f[-1]:g} Hz, {f.size} points, step {f[1] - f[0]:.3g} Hz"
