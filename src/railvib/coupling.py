@@ -111,7 +111,7 @@ class CoupledSystem:
         v = excitation_vector(f, wheel_delays(self.vehicle.wheel_offsets, self.speed))
         qv = np.einsum("fij,fj->fi", q, v)
         system = self.vehicle.dynamic_stiffness(f) + b @ q @ b.T
-        u_v = np.linalg.solve(system, (qv @ b.T)[..., None])[..., 0]
+        u_v = np.asarray(np.linalg.solve(system, (qv @ b.T)[..., None])[..., 0], dtype=complex)
         force = np.einsum("fij,fj->fi", q, u_v @ b) - qv
         rail = np.einsum("fij,fj->fi", rec, force)
         return CoupledFRF(f=f, vehicle=u_v, rail=rail, contact_force=force, receptance=rec)

@@ -56,7 +56,7 @@ class FrequencyGrid:
         if not step > 0:
             raise CaseError("frequency.step", step, "must be > 0 (Hz)")
         n = int(np.floor((f_max - f_min) / step + 1e-9)) + 1
-        return cls(f_min + step * np.arange(n))
+        return cls(np.asarray(f_min + step * np.arange(n), dtype=np.float64))
 
     @classmethod
     def logarithmic(cls, f_min: float, f_max: float, n: int) -> FrequencyGrid:

@@ -56,12 +56,12 @@ def krylov_series(beta4: ArrayLike, length: float) -> tuple[NDArray[np.complex12
     x = float(length)
     zeta = beta4 * x**4
     n = _n_terms(beta4, x)
-    sums = []
+    sums: list[NDArray[np.complex128]] = []
     for j in range(4):
         acc = np.zeros_like(zeta)
         for k in range(n - 1, -1, -1):  # Horner in zeta, highest term first
             acc = acc * zeta + 1.0 / math.factorial(4 * k + j)
-        sums.append(acc * x**j)
+        sums.append(np.asarray(acc * x**j, dtype=np.complex128))
     return tuple(sums)
 
 

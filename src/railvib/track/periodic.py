@@ -136,11 +136,14 @@ class PeriodicTrack:
     def _beta4(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
         omega = 2.0 * np.pi * f
         d = self.sleeper_spacing
-        return self.rail.mass_per_length * omega**2 * d**4 / self.rail.complex_bending_stiffness
+        beta4 = self.rail.mass_per_length * omega**2 * d**4 / self.rail.complex_bending_stiffness
+        return np.asarray(beta4, dtype=np.complex128)
 
     def _pad_hat(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
         z = np.asarray(self.pad.stiffness(f, self.pad_temperature), dtype=complex)
-        return z * self.sleeper_spacing**3 / self.rail.complex_bending_stiffness
+        return np.asarray(
+            z * self.sleeper_spacing**3 / self.rail.complex_bending_stiffness, dtype=np.complex128
+        )
 
     def cell_transfer(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Dimensionless field transfer matrix of one bay, ``(n_freq, 4, 4)``.
@@ -298,7 +301,7 @@ class PeriodicTrack:
         c[1, 1] = 1.0 / d
         c[2, 3] = ei / d**3
         c[3, 2] = -ei / d**2
-        return c, np.linalg.inv(c)
+        return c, np.asarray(np.linalg.inv(c), dtype=np.complex128)
 
 
 def _warn_if_ill_conditioned(
@@ -352,7 +355,7 @@ def _propagation_constants(
     m1 = 0.5 * (lam + root)
     m2 = 0.5 * (lam - root)
     big = np.where(np.abs(m1) >= np.abs(m2), m1, m2)  # no cancellation in the larger root
-    return 1.0 / big, big
+    return np.asarray(1.0 / big, dtype=np.complex128), np.asarray(big, dtype=np.complex128)
 
 
 def _bloch_vector(t: NDArray[np.complex128], mu: NDArray[np.complex128]) -> NDArray[np.complex128]:
