@@ -214,14 +214,17 @@ class ChunkStore:
         return [i for i in range(self.layout.n_chunks) if i not in done]
 
     def write(self, chunk_id: int, arrays: dict[str, NDArray[Any]]) -> Path:
-        """Write one finished chunk atomically (temporary file, then ``os.replace``)."""
+        """Write one finished chunk atomically (temporary file, then ``os.replace``).
+
+        The rename makes the chunk all-or-nothing against the death of any process
+        (Ctrl-C, SIGKILL, a worker dying); there is no fsync, so after a power
+        failure the file system decides.
+        """
         path = self.chunk_path(chunk_id)
         payload = {k.replace("/", "__"): v for k, v in arrays.items()}
         with atomic_path(path) as tmp:
             with open(tmp, "wb") as fh:
                 np.savez(fh, fingerprint=np.array(self.fingerprint), **payload)
-                fh.flush()
-                os.fsync(fh.fileno())
         return path
 
     def read(self, chunk_id: int) -> dict[str, NDArray[Any]]:

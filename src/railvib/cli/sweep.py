@@ -1,0 +1,163 @@
+"""``railvib sweep``: parameter sweeps, batched and resumable, locally or on a Dask cluster.
+
+``railvib sweep SWEEP.toml`` is short for ``railvib sweep run SWEEP.toml``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+
+__all__ = ["plot", "sweep"]
+
+
+class _SweepGroup(click.Group):
+    """A group whose first argument may be a sweep file (then ``run`` is implied)."""
+
+    def resolve_command(
+        self, ctx: click.Context, args: list[str]
+    ) -> tuple[str | None, click.Command | None, list[str]]:
+        if args and args[0] not in self.commands and not args[0].startswith("-"):
+            args = ["run", *args]
+        return super().resolve_command(ctx, args)
+
+
+@click.group(cls=_SweepGroup)
+def sweep() -> None:
+    """Parameter sweeps: many cases over axes, batched, resumable, local or on Dask.
+
+    Run with "railvib sweep SWEEP.toml [-o OUT] [--plot]" (the same command resumes
+    an interrupted sweep); add "--scheduler tcp://HOST:8786" for a Dask cluster.
+    "railvib sweep plot OUT" draws the summary, "railvib sweep export OUT" writes
+    netCDF/CSV.
+    """
+
+
+@sweep.command("run")
+@click.argument("sweep_file", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
+              default=None, help="output folder [default: <SWEEP_FILE stem>.sweep]")
+@click.option("-j", "--workers", type=click.IntRange(min=1), default=None,
+              help="local worker processes [default: all cores]")
+@click.option("--scheduler", metavar="ADDRESS", default=None,
+              help="Dask distributed scheduler, e.g. tcp://10.0.0.1:8786")
+@click.option("--plot", "make_plots", is_flag=True, help="draw summary plots into OUT/plots")
+@click.option("--netcdf", "netcdf", is_flag=True, help="also write OUT/sweep.nc")
+@click.option("--csv", "csv", is_flag=True, help="also write the summary as OUT/summary.csv")
+@click.option("--overwrite", is_flag=True,
+              help="discard finished chunks of a DIFFERENT sweep in OUT instead of refusing")
+@click.option("--no-progress", is_flag=True, help="no progress bar")
+def run_command(
+    sweep_file: Path,
+    outdir: Path | None,
+    workers: int | None,
+    scheduler: str | None,
+    make_plots: bool,
+    netcdf: bool,
+    csv: bool,
+    overwrite: bool,
+    no_progress: bool,
+) -> None:
+    """Run SWEEP_FILE; rerunning the same command resumes an interrupted sweep."""
+    from railvib.sweep import SweepLayout, load_sweep, run_sweep
+
+    spec = load_sweep(sweep_file)
+    out = outdir or Path(f"{sweep_file.stem}.sweep")
+    lay = SweepLayout(spec)
+    where = f"Dask scheduler {scheduler}" if scheduler else "local processes"
+    click.echo(
+        f"{lay.n_cases} cases ({' x '.join(map(str, lay.shape))} over "
+        f"{', '.join(lay.dims)}) in {lay.n_chunks} chunks, on {where} -> {out}/",
+        err=True,
+    )
+    try:
+        ds = run_sweep(spec, out, workers=workers, scheduler=scheduler,
+                       progress=not no_progress, overwrite=overwrite)
+    except KeyboardInterrupt:
+        click.echo(f"\ninterrupted; finished chunks are kept in {out}/chunks - rerun the same "
+                   "command to resume", err=True)
+        raise
+    assert ds is not None
+    _write_extras(ds, out, netcdf=netcdf, csv=csv, plots=make_plots)
+    click.echo(f"written {out}/sweep.zarr", err=True)
+
+
+def _write_extras(ds: Any, out: Path, *, netcdf: bool, csv: bool, plots: bool) -> None:
+    from railvib.sweep import save_sweep_csv, save_sweep_netcdf
+
+    if netcdf:
+        click.echo(f"written {save_sweep_netcdf(ds, out / 'sweep.nc')}", err=True)
+    if csv:
+        click.echo(f"written {save_sweep_csv(ds, out / 'summary.csv')}", err=True)
+    if plots:
+        from railvib.plot.sweep import save_sweep_plots
+
+        for p in save_sweep_plots(ds, out / "plots"):
+            click.echo(f"written {p}", err=True)
+
+
+@click.command("plot")
+@click.argument("result", type=click.Path(exists=True, path_type=Path))
+@click.option("-v", "--variable", "variables", multiple=True,
+              default=("peak", "dominant_frequency"), show_default=True,
+              help="summary variable(s): peak, dominant_frequency, rms, rms_<lo>_<hi>_hz")
+@click.option("-r", "--response", "responses", multiple=True,
+              help="response label(s) [default: car body, wheelset 1, rail at wheel 1]")
+@click.option("--x", "x", default=None, help="sweep dimension on the horizontal axis")
+@click.option("--y", "y", default=None, help="sweep dimension for a heat map")
+@click.option("-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
+              default=None, help="folder for the PNGs [default: RESULT/plots or next to it]")
+def plot(
+    result: Path,
+    variables: tuple[str, ...],
+    responses: tuple[str, ...],
+    x: str | None,
+    y: str | None,
+    outdir: Path | None,
+) -> None:
+    """Plot the summary of a sweep RESULT (folder, sweep.zarr or .nc) over its axes."""
+    import matplotlib.pyplot as plt
+
+    from railvib.plot.sweep import DEFAULT_RESPONSES, plot_sweep
+    from railvib.results import atomic_path
+    from railvib.sweep import load_sweep_dataset
+
+    ds = load_sweep_dataset(result)
+    if outdir is None:
+        outdir = (result if result.is_dir() and result.suffix != ".zarr" else result.parent)
+        outdir = outdir / "plots"
+    outdir.mkdir(parents=True, exist_ok=True)
+    labels = [str(r) for r in ds["response"].values]
+    chosen = list(responses) or [r for r in DEFAULT_RESPONSES if r in labels]
+    for variable in variables:
+        for r in chosen:
+            ax = plot_sweep(ds, variable, r, x=x, y=y)
+            path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
+            with atomic_path(path) as tmp:
+                ax.figure.savefig(tmp, dpi=120, format="png")
+            plt.close(ax.figure)
+            click.echo(f"written {path}")
+
+
+sweep.add_command(plot)
+
+
+@sweep.command("export")
+@click.argument("result", type=click.Path(exists=True, path_type=Path))
+@click.option("--netcdf", "nc_path", type=click.Path(dir_okay=False, path_type=Path),
+              default=None, help="write the whole dataset to this netCDF file")
+@click.option("--csv", "csv_path", type=click.Path(dir_okay=False, path_type=Path),
+              default=None, help="write the summary table to this CSV file")
+def export(result: Path, nc_path: Path | None, csv_path: Path | None) -> None:
+    """Export a sweep RESULT (folder or sweep.zarr) to netCDF and/or CSV."""
+    from railvib.sweep import load_sweep_dataset, save_sweep_csv, save_sweep_netcdf
+
+    if nc_path is None and csv_path is None:
+        raise click.UsageError("give --netcdf FILE and/or --csv FILE")
+    ds = load_sweep_dataset(result)
+    if nc_path is not None:
+        click.echo(f"written {save_sweep_netcdf(ds, nc_path)}")
+    if csv_path is not None:
+        click.echo(f"written {save_sweep_csv(ds, csv_path)}")

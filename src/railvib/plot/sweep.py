@@ -1,0 +1,183 @@
+"""Plots of sweep summaries: lines over one sweep axis, heat maps over two.
+
+Functions take a sweep dataset (:func:`railvib.sweep.load_sweep_dataset`), draw
+on ``ax`` (created if None) and return the axes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg", force=False)
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+from matplotlib.axes import Axes  # noqa: E402
+from matplotlib.colors import LogNorm  # noqa: E402
+
+from railvib.errors import CaseError  # noqa: E402
+from railvib.results.dataset import atomic_path  # noqa: E402
+
+__all__ = ["DEFAULT_RESPONSES", "plot_sweep", "save_sweep_plots", "sweep_dims"]
+
+#: responses drawn by :func:`save_sweep_plots` when present
+DEFAULT_RESPONSES = ("carbody.bounce", "wheelset1.bounce", "rail@wheel1")
+
+
+def sweep_dims(ds: xr.Dataset) -> list[str]:
+    """Return the sweep dimensions of a sweep dataset, in file order."""
+    dims = ds.attrs.get("sweep_dims", "")
+    if isinstance(dims, str):
+        return [d for d in dims.split(",") if d]
+    return [str(d) for d in dims]
+
+
+def _axis_values(ds: xr.Dataset, dim: str) -> tuple[np.ndarray, str]:
+    """Values and label of a sweep dimension (its first coordinate along it)."""
+    names = [dim] if dim in ds.coords else [
+        n for n, c in ds.coords.items() if c.dims == (dim,)
+    ]
+    if not names:
+        return np.arange(ds.sizes[dim]), dim
+    c = ds.coords[names[0]]
+    unit = c.attrs.get("units", "")
+    return c.values, f"{names[0]} [{unit}]" if unit else str(names[0])
+
+
+def plot_sweep(
+    ds: xr.Dataset,
+    variable: str = "peak",
+    response: str | Sequence[str] = "wheelset1.bounce",
+    *,
+    x: str | None = None,
+    y: str | None = None,
+    sel: Mapping[str, Any] | None = None,
+    kind: str = "auto",
+    ax: Axes | None = None,
+) -> Axes:
+    """Draw a summary variable over one sweep axis (lines) or two (heat map).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep dataset.
+    variable : str
+        Summary variable: ``peak`` (PSD units), ``dominant_frequency`` (Hz),
+        ``rms`` or ``rms_<lo>_<hi>_hz`` (m/s^2).
+    response : str or sequence of str
+        Response label(s); a heat map takes one.
+    x, y : str, optional
+        Sweep dimensions for the horizontal and vertical axes (default: the
+        first one or two dimensions with more than one value).
+    sel : mapping, optional
+        Index positions (int) of the other sweep dimensions; default 0.
+    kind : {"auto", "lines", "heatmap"}
+        ``auto`` draws a heat map when two dimensions vary.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if variable not in ds.data_vars or "frequency" in ds[variable].dims:
+        allowed = [n for n, v in ds.data_vars.items() if "frequency" not in v.dims]
+        raise CaseError("variable", variable, f"one of {', '.join(allowed)}")
+    responses = [response] if isinstance(response, str) else list(response)
+    labels = [str(r) for r in ds["response"].values]
+    for r in responses:
+        if r not in labels:
+            raise CaseError("response", r, f"one of {', '.join(labels)}")
+    dims = sweep_dims(ds) or [d for d in ds[variable].dims if d != "response"]
+    varying = [d for d in dims if ds.sizes[d] > 1] or dims
+    for name, dim in (("x", x), ("y", y)):
+        if dim is not None and dim not in dims:
+            raise CaseError(name, dim, f"one of {', '.join(dims)}")
+    x = x or varying[0]
+    if y is None and kind != "lines":
+        rest = [d for d in varying if d != x]
+        y = rest[0] if rest and kind in ("auto", "heatmap") else None
+    if kind == "heatmap" and y is None:
+        raise CaseError("y", None, "a second sweep dimension with more than one value")
+    keep = {x} | ({y} if y else set())
+    pick = {d: int((sel or {}).get(d, 0)) for d in dims if d not in keep}
+    da = ds[variable].isel(pick)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    unit = da.attrs.get("units", "")
+    long_name = da.attrs.get("long_name", variable)
+    xv, xlabel = _axis_values(ds, x)
+    fixed = ", ".join(f"{_axis_values(ds, d)[1].split(' [')[0]}={_axis_values(ds, d)[0][i]}"
+                      for d, i in pick.items())
+    if y is None:
+        for r in responses:
+            ax.plot(xv, da.sel(response=r).transpose(x).values, marker="o", ms=3, label=r)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(f"{long_name} [{unit}]")
+        if variable != "dominant_frequency":
+            ax.set_yscale("log")
+        ax.legend(fontsize="small")
+        ax.grid(True, which="both", alpha=0.3)
+    else:
+        z = da.sel(response=responses[0]).transpose(y, x).values
+        yv, ylabel = _axis_values(ds, y)
+        numeric = np.issubdtype(np.asarray(xv).dtype, np.number) and np.issubdtype(
+            np.asarray(yv).dtype, np.number)
+        norm = LogNorm() if variable != "dominant_frequency" and np.all(z > 0) else None
+        if numeric:
+            mesh = ax.pcolormesh(xv, yv, z, shading="nearest", norm=norm)
+        else:
+            mesh = ax.pcolormesh(z, norm=norm)
+            ax.set_xticks(np.arange(len(xv)) + 0.5, [str(v) for v in xv], rotation=45)
+            ax.set_yticks(np.arange(len(yv)) + 0.5, [str(v) for v in yv])
+        ax.figure.colorbar(mesh, ax=ax, label=f"{long_name} [{unit}]")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        fixed = f"{responses[0]}" + (f"; {fixed}" if fixed else "")
+    if fixed:
+        ax.set_title(fixed, fontsize="small")
+    return ax
+
+
+def save_sweep_plots(
+    ds: xr.Dataset,
+    outdir: str | Path,
+    variables: Sequence[str] = ("peak", "dominant_frequency"),
+    responses: Sequence[str] | None = None,
+) -> list[Path]:
+    """Write one PNG per (variable, response): heat map if two axes vary, else lines.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep dataset.
+    outdir : str or pathlib.Path
+        Folder for the PNG files.
+    variables : sequence of str
+        Summary variables to draw.
+    responses : sequence of str, optional
+        Responses (default: those of :data:`DEFAULT_RESPONSES` present).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    labels = [str(r) for r in ds["response"].values]
+    responses = list(responses) if responses else [r for r in DEFAULT_RESPONSES if r in labels]
+    written = []
+    for variable in variables:
+        for r in responses:
+            ax = plot_sweep(ds, variable, r)
+            path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
+            with atomic_path(path) as tmp:
+                ax.figure.savefig(tmp, dpi=120, format="png")
+            plt.close(ax.figure)
+            written.append(path)
+    return written
