@@ -1,0 +1,41 @@
+"""The examples in the README and in docstrings run and say what they claim."""
+
+import doctest
+import re
+from pathlib import Path
+
+import pytest
+
+import railvib
+import railvib.contact
+import railvib.grid
+import railvib.solve
+import railvib.track.periodic
+
+README = Path(__file__).resolve().parents[2] / "README.md"
+
+
+def test_readme_python_examples_run(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    blocks = re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
+    assert blocks, "README has no python example"
+    for block in blocks:
+        exec(compile(block, "README.md", "exec"), {})  # noqa: S102
+
+
+def test_readme_opens_with_the_two_commands():
+    text = README.read_text()
+    bash = re.findall(r"```bash\n(.*?)```", text, flags=re.S)
+    assert "railvib reproduce" in bash[0]
+    assert "pytest" in bash[1]
+    ci = (README.parent / ".ci" / "run").read_text()
+    assert bash[1].split("&&")[-1].strip() in ci
+
+
+@pytest.mark.parametrize(
+    "module", [railvib, railvib.grid, railvib.contact, railvib.track.periodic, railvib.solve]
+)
+def test_docstring_examples(module):
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0
+    assert result.failed == 0
