@@ -5,6 +5,11 @@ Everything inside railvib is SI: Hz, m, s, kg, N, N/m, N s/m, K.
 
 from __future__ import annotations
 
+from typing import TypeVar
+
+import numpy as np
+from numpy.typing import NDArray
+
 __all__ = [
     "ACCELERATION_PSD",
     "DISPLACEMENT_PSD",
@@ -19,17 +24,20 @@ DISPLACEMENT_PSD = "m^2/Hz"
 FORCE_PSD = "N^2/Hz"
 ZERO_CELSIUS_K = 273.15
 
+#: a float or an array of floats (conversions keep the kind they are given)
+FloatOrArray = TypeVar("FloatOrArray", float, NDArray[np.float64])
+
 
 def kmh_to_ms(speed_kmh: float) -> float:
     """Convert km/h to m/s."""
     return speed_kmh / 3.6
 
 
-def celsius_to_kelvin(t_celsius: float) -> float:
+def celsius_to_kelvin(t_celsius: FloatOrArray) -> FloatOrArray:
     """Convert degrees Celsius to kelvin."""
     return t_celsius + ZERO_CELSIUS_K
 
 
-def kelvin_to_celsius(t_kelvin: float) -> float:
+def kelvin_to_celsius(t_kelvin: FloatOrArray) -> FloatOrArray:
     """Convert kelvin to degrees Celsius."""
     return t_kelvin - ZERO_CELSIUS_K

@@ -112,12 +112,12 @@ def fit(
     Without --tg or --c1/--c2 the WLF constants are fitted (needs several frequencies
     per temperature). pad.toml holds a [track.pad] table usable in a case file.
     """
-    import matplotlib.pyplot as plt
     import numpy as np
 
     from railvib.errors import CaseError
     from railvib.pads import WLF, fit_log_linear, fit_pad, pad_toml, read_measurements_csv
     from railvib.plot.pads import plot_master_curve, plot_stiffness_vs_frequency
+    from railvib.results import atomic_path
 
     if tg is not None and (c1 is not None or c2 is not None):
         raise CaseError("--tg", tg, "give either --tg or --c1 and --c2, not both")
@@ -156,22 +156,35 @@ def fit(
 
     outdir.mkdir(parents=True, exist_ok=True)
     header = f"railvib pad fit {data.name} --model {model}\n" + report
-    (outdir / "pad.toml").write_text(pad_toml(result.model, header=header))
+    with atomic_path(outdir / "pad.toml") as tmp:
+        tmp.write_text(pad_toml(result.model, header=header), encoding="utf-8")
 
     master = result.master
     assert master is not None
     fr = master.reduced_frequency_hz
     f_curve = np.geomspace(fr.min(), fr.max(), 400)
     axes = plot_master_curve(master, f_curve, result.model.stiffness(f_curve))
-    axes[0].figure.savefig(outdir / "master_curve.png", dpi=120)
-    plt.close(axes[0].figure)
+    _save_figure(axes[0].get_figure(), outdir / "master_curve.png", tight=False)
 
     f_plot = np.geomspace(f_band[0], f_band[1], 200)
     ax = plot_stiffness_vs_frequency(f_plot, {t: result.model.stiffness(f_plot, t) for t in temps})
     ax.set_title(f"{data.name}: {model} with TTS")
-    ax.figure.tight_layout()
-    ax.figure.savefig(outdir / "stiffness_vs_frequency.png", dpi=120)
-    plt.close(ax.figure)
+    _save_figure(ax.get_figure(), outdir / "stiffness_vs_frequency.png")
 
     click.echo(report)
     click.echo(f"wrote {outdir / 'pad.toml'}, master_curve.png, stiffness_vs_frequency.png")
+
+
+def _save_figure(fig: object, path: Path, tight: bool = True) -> None:
+    """Write a figure as PNG atomically and close it."""
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    from railvib.results import atomic_path
+
+    assert isinstance(fig, Figure), "plots are drawn on top-level figures"
+    if tight:
+        fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
+    plt.close(fig)

@@ -483,10 +483,11 @@ def fit_model(
         def resid(x: _F, build: Callable[[_F], PadModel] = build) -> _F:
             return np.concatenate(_residuals(build(x), f, k, loss_weight))
 
-        x0 = np.clip(x0, lo, hi)
-        sol = least_squares(resid, x0, bounds=(lo, hi), x_scale="jac", xtol=1e-12, ftol=1e-12)
+        start = np.clip(x0, lo, hi)
+        sol = least_squares(resid, start, bounds=(lo, hi), x_scale="jac", xtol=1e-12, ftol=1e-12)
         if best is None or sol.cost < best[0].cost:
             best = (sol, build)
+    assert best is not None, "at least one start point is always tried"
     sol, build = best
     fitted = build(sol.x)
     rs, rl = _residuals(fitted, f, k, 1.0)

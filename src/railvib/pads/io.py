@@ -267,8 +267,8 @@ def pad_to_dict(model: PadModel) -> dict[str, Any]:
         TOML-ready (floats, booleans, lists of floats and one nested ``tts`` table).
     """
     if isinstance(model, TemperatureShifted):
-        out = pad_to_dict(model.base)
-        out["tts"] = {
+        shifted = pad_to_dict(model.base)
+        shifted["tts"] = {
             "reference_temperature_c": float(model.reference_temperature_c),
             "c1": float(model.wlf.c1),
             "c2_k": float(model.wlf.c2_k),
@@ -276,7 +276,7 @@ def pad_to_dict(model: PadModel) -> dict[str, Any]:
             "vertical_shift": bool(model.vertical_shift),
             "expansion_coefficient_per_k": float(model.expansion_coefficient_per_k),
         }
-        return out
+        return shifted
     name = model.model_name
     if name not in PAD_MODELS or not isinstance(model, PAD_MODELS[name].cls):  # type: ignore[arg-type]
         raise CaseError("track.pad.model", type(model).__name__, f"one of {', '.join(PAD_MODELS)}")

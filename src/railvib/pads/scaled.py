@@ -35,4 +35,4 @@ class ScaledPad(PadModel):
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``factor * K*_base(f, T)`` in N/m."""
-        return self.factor * np.asarray(self.base.stiffness(f, temperature), dtype=complex)
+        return np.asarray(self.factor * self.base.stiffness(f, temperature), dtype=np.complex128)
