@@ -27,8 +27,7 @@ pre{background:#f7f7f7;padding:8px;font-size:12px;overflow-x:auto} .small{font-s
 """
 
 _INTRO = """<p>Reproduction of Wang, Yang, Wei &amp; Zhou, <i>Stationary random vibration analysis
-of
-vehicle-track coupled system with nonlinear stiffness of railpads</i>, J. Vibroengineering
+of vehicle-track coupled system with nonlinear stiffness of railpads</i>, J. Vibroengineering
 19(6), 2017 (DOI 10.21595/jve.2017.17947), sections 3.3 and 3.4: the type-B metro car at
 80 km/h on the embedded-sleeper slab track with WJ-7 railpads, American class 5 (wavelength
 &gt; 1 m) plus Shi-tai (&lt; 1 m) irregularity. PSDs are one-sided, per Hz. Crosses on the
