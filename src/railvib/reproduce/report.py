@@ -40,7 +40,7 @@ every qualitative finding. Three differences remain, none tuned away: (1) the pa
 print the K<sub>0</sub> of its 20 &deg;C frequency-dependent pad; with K<sub>0</sub> = 50 kN/mm
 at f<sub>0</sub> = 5 Hz the wheel peak moves by about 1 Hz, not the paper's 9 Hz;
 (2) with the physical temperature pairing (colder is stiffer) our wheel peaks at -30/-10/+20
-&deg;C sit 10-25 Hz below the paper's, whose +20 &deg;C result matches our K<sub>0</sub> =
+&deg;C sit 12-23 Hz below the paper's, whose +20 &deg;C result matches our K<sub>0</sub> =
 70.8 kN/mm case; (3) our absolute PSD levels differ from the paper's (see the % column; pad damping
 read as 5e4 N&nbsp;s/m where the paper prints kN&nbsp;s/m; no convention factor explains the
 gap). The abstract's "3.3 times" and "20.6 Hz" cannot

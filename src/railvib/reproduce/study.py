@@ -278,9 +278,9 @@ FIGURES: tuple[FigureSpec, ...] = (
 
 _WHOLE = (0.5, 1000.0)
 _LEVEL = (
-    "Our PSD levels are 1.5-3 times the paper's with the Table 2 damping read as 5e4 N s/m; "
-    "no convention factor (one/two-sided, per Hz/rad, cm/mm) explains it (physics.md §6.5). "
-    "Not tuned."
+    "Our Fig. 11 peaks are 2.5-3.2 times the paper's with the Table 2 damping read as "
+    "5e4 N s/m; no convention factor (one/two-sided, per Hz/rad, cm/mm) explains it "
+    "(docs/paper-interpretation.md). Not tuned."
 )
 _LEVEL15 = (
     "Of the paper's order (-27 % to +34 %), but the paper's series grows more steeply with "
@@ -292,11 +292,12 @@ _F11 = (
     "at f0 = 5 Hz (equal to the constant case at f0). Its 57.1 Hz needs a stiffer curve "
     "(K0 ≈ 70.8 kN/mm, f0 ≲ 3 Hz: the literal +20 °C ↔ 70.8 pairing). Not tuned."
 )
-_TEMP_SHORT = "Our temperature series sits 10-25 Hz below the paper's (see the Fig. 15 rows)."
+_TEMP_SHORT = "Our temperature series sits 12-23 Hz below the paper's (see the Fig. 15 rows)."
 _TEMP = (
-    "Our series is 10-25 Hz below the paper's: with the physical pairing (+20 °C ↔ 31.0 kN/mm) "
-    "and f0 = 5 Hz no K0/f0 choice gives 50/63/73 Hz (physics.md §6.5); the paper's +20 °C "
-    "result (50.3 Hz) matches our -30 °C (K0 = 70.8) case. Trend reproduced, values not."
+    "Our series is 12-23 Hz below the paper's: with the physical pairing (+20 °C ↔ 31.0 "
+    "kN/mm) and f0 = 5 Hz no K0/f0 choice gives 50/63/73 Hz (docs/paper-interpretation.md); "
+    "the paper's +20 °C result (50.3 Hz) matches our -30 °C (K0 = 70.8) case. Trend "
+    "reproduced, values not."
 )
 
 PAPER_NUMBERS: tuple[PaperNumber, ...] = (
@@ -361,7 +362,8 @@ PAPER_NUMBERS: tuple[PaperNumber, ...] = (
         "(constant)", "Hz", 47.9, "47.9 Hz", "peak_frequency",
         _n(case="constant", response=WHEELSET, band=_WHOLE),
         "frequency of the largest PSD value over the grid",
-        "Whole wheelset on a one-rail beam (the paper's reading, physics.md §6.5: 46 Hz).",
+        "Whole wheelset on a one-rail beam (the paper's reading; an independent finite-track "
+        "model gives 46 Hz).",
     ),
     PaperNumber(
         "fig11.peak.freqdep", "Fig. 11, §3.3", "2nd wheelset PSD peak (frequency-dependent)",
