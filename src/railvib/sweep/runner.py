@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import multiprocessing as mp
 import os
+import signal
 import sys
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -117,9 +118,16 @@ def _mp_context() -> Any:
     return mp.get_context("spawn")
 
 
+def _ignore_sigint() -> None:
+    """Leave Ctrl-C to the parent, which stops the pool and keeps the finished chunks."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _local(spec: dict[str, Any], todo: list[int], workers: int) -> Iterator[ChunkResult]:
     """Chunks on local processes, at most 2 queued per worker; yields as they finish."""
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(todo)), mp_context=_mp_context())
+    pool = ProcessPoolExecutor(
+        max_workers=min(workers, len(todo)), mp_context=_mp_context(), initializer=_ignore_sigint
+    )
     pending: set[Future[ChunkResult]] = set()
     queue = list(reversed(todo))
     try:
