@@ -240,9 +240,21 @@ def validate_case(
     units = _units(labels)
     ds_frf = xr.Dataset(
         {
-            "pem_psd": (("frequency", "response"), s_pem, {"units": "see attrs", "long_name": "PEM acceleration PSD, one-sided"}),  # noqa: E501
-            "finite_psd": (("frequency", "response"), s_fin, {"units": "see attrs", "long_name": "finite-track acceleration PSD, one-sided"}),  # noqa: E501
-            "relative_error": (("frequency", "response"), rel, {"units": "1", "long_name": "|finite / PEM - 1|"}),  # noqa: E501
+            "pem_psd": (
+                ("frequency", "response"),
+                s_pem,
+                {"units": "see attrs", "long_name": "PEM acceleration PSD, one-sided"},
+            ),  # noqa: E501
+            "finite_psd": (
+                ("frequency", "response"),
+                s_fin,
+                {"units": "see attrs", "long_name": "finite-track acceleration PSD, one-sided"},
+            ),  # noqa: E501
+            "relative_error": (
+                ("frequency", "response"),
+                rel,
+                {"units": "1", "long_name": "|finite / PEM - 1|"},
+            ),  # noqa: E501
         },
         coords=coords,
         attrs={"psd_units": units, "elements_per_span": s.frf_elements_per_span},
@@ -281,10 +293,22 @@ def validate_case(
     ds_mc = xr.Dataset(
         {
             "pem_psd": (dims, s_raw, {"units": "see attrs", "long_name": "PEM PSD at the bin"}),
-            "pem_expected": (dims, s_exp, {"units": "see attrs", "long_name": "PEM PSD through the Welch window"}),  # noqa: E501
+            "pem_expected": (
+                dims,
+                s_exp,
+                {"units": "see attrs", "long_name": "PEM PSD through the Welch window"},
+            ),  # noqa: E501
             "mc_psd": (dims, s_mc, {"units": "see attrs", "long_name": "Monte Carlo Welch PSD"}),
-            "mc_lower": (dims, lower, {"units": "see attrs", "long_name": "lower confidence limit"}),  # noqa: E501
-            "mc_upper": (dims, upper, {"units": "see attrs", "long_name": "upper confidence limit"}),  # noqa: E501
+            "mc_lower": (
+                dims,
+                lower,
+                {"units": "see attrs", "long_name": "lower confidence limit"},
+            ),  # noqa: E501
+            "mc_upper": (
+                dims,
+                upper,
+                {"units": "see attrs", "long_name": "upper confidence limit"},
+            ),  # noqa: E501
             "inside": (dims, inside, {"units": "1", "long_name": "PEM (windowed) inside band"}),
             "inside_raw": (dims, inside_raw, {"units": "1", "long_name": "PEM (raw) inside band"}),
         },
@@ -316,11 +340,26 @@ def validate_case(
             raw_tab[i] = inside_raw[m].mean(axis=0)
     table = xr.Dataset(
         {
-            "max_relative_error": (("band", "response"), err_tab, {"units": "1", "long_name": "finite track vs PEM, max |S_fe/S_pem - 1|"}),  # noqa: E501
-            "fraction_inside": (("band", "response"), in_tab, {"units": "1", "long_name": "fraction of bins with windowed PEM inside MC band"}),  # noqa: E501
-            "fraction_inside_raw": (("band", "response"), raw_tab, {"units": "1", "long_name": "fraction of bins with raw PEM inside MC band"}),  # noqa: E501
+            "max_relative_error": (
+                ("band", "response"),
+                err_tab,
+                {"units": "1", "long_name": "finite track vs PEM, max |S_fe/S_pem - 1|"},
+            ),  # noqa: E501
+            "fraction_inside": (
+                ("band", "response"),
+                in_tab,
+                {"units": "1", "long_name": "fraction of bins with windowed PEM inside MC band"},
+            ),  # noqa: E501
+            "fraction_inside_raw": (
+                ("band", "response"),
+                raw_tab,
+                {"units": "1", "long_name": "fraction of bins with raw PEM inside MC band"},
+            ),  # noqa: E501
         },
-        coords={"band": ("band", names, {"units": "Hz", "long_name": "frequency band"}), "response": coords["response"]},  # noqa: E501
+        coords={
+            "band": ("band", names, {"units": "Hz", "long_name": "frequency band"}),
+            "response": coords["response"],
+        },  # noqa: E501
     )
     return ValidationResult(frf=ds_frf, mc=ds_mc, table=table, timings=timings)
 

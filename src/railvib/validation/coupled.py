@@ -192,9 +192,9 @@ class FiniteCoupledSystem:
         f = np.atleast_1d(np.asarray(f, dtype=float))
         v = self.vehicle
         nv = self.n_vehicle
-        static = (
-            self._vehicle_block(v.stiffness_matrix) + self._contact_stiffness_matrix
-        ).astype(complex)
+        static = (self._vehicle_block(v.stiffness_matrix) + self._contact_stiffness_matrix).astype(
+            complex
+        )
         damping = self._vehicle_block(v.damping_matrix)
         mass = self._vehicle_block(v.mass_matrix)
         force = self.force_matrix().toarray()

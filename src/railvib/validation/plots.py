@@ -52,9 +52,7 @@ def plot_overlays(
         )
         ax.plot(mc["frequency"], mc["mc_psd"], color="0.35", lw=0.6, label="Monte Carlo (Welch)")
         ax.plot(frf["frequency"], frf["pem_psd"], color="C0", lw=1.2, label="symplectic + PEM")
-        ax.plot(
-            frf["frequency"], frf["finite_psd"], "--", color="C3", lw=1.0, label="finite track"
-        )
+        ax.plot(frf["frequency"], frf["finite_psd"], "--", color="C3", lw=1.0, label="finite track")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("frequency (Hz)")
