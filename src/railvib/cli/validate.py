@@ -16,6 +16,7 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from railvib.coupling import CoupledSystem
+from railvib.results import atomic_path
 from railvib.spectra.base import SpatialSpectrum
 from railvib.validation import (
     ValidationResult,
@@ -98,14 +99,16 @@ def run_validation(
         f"Timings (s): {result.timings}\n\nAcceptance (issue 5): "
         f"{'PASSED' if result.passed else 'FAILED'}\n"
     )
-    (out / f"{name}_agreement.md").write_text(text)
+    with atomic_path(out / f"{name}_agreement.md") as tmp:
+        tmp.write_text(text, encoding="utf-8")
     for key in ("frf", "mc", "table"):
         ds = getattr(result, key).copy()
         ds.attrs = {k: str(v) for k, v in ds.attrs.items()}
         for var in ds.data_vars:
             if ds[var].dtype == bool:
                 ds[var] = ds[var].astype("i1")
-        ds.to_netcdf(out / f"{name}_{key}.nc", engine="h5netcdf")
+        with atomic_path(out / f"{name}_{key}.nc") as tmp:
+            ds.to_netcdf(tmp, engine="h5netcdf")
     console.print(text)
     return result
 
@@ -127,28 +130,15 @@ def validate(
     case_file: Path, quick: bool, outdir: Path, realisations: int | None, seed: int
 ) -> None:
     """Run CASE_FILE three ways (PEM, finite track, Monte Carlo) and write the comparison."""
-    from railvib.errors import CaseError
+    from railvib.case import build_spectrum, build_system, load_case
 
-    try:
-        from railvib.case import build_system, load_case
-    except ImportError as exc:  # the case loader is another issue
-        raise click.ClickException(f"railvib.case is not available: {exc}") from exc
-    try:
-        case = load_case(case_file)
-        built = build_system(case)
-        system = built if isinstance(built, CoupledSystem) else built[0]
-        spectrum = getattr(case, "spectrum", None) or getattr(built, "spectrum", None)
-        if spectrum is None and not isinstance(built, CoupledSystem):
-            spectrum = built[1]
-        run_validation(
-            system,
-            spectrum,
-            outdir,
-            quick=quick,
-            realisations=realisations,
-            seed=seed,
-            name=case_file.stem,
-        )
-    except CaseError as err:
-        click.echo(f"error: {err}", err=True)
-        raise SystemExit(2) from None
+    case = load_case(case_file)
+    run_validation(
+        build_system(case),
+        build_spectrum(case),
+        outdir,
+        quick=quick,
+        realisations=realisations,
+        seed=seed,
+        name=case_file.stem,
+    )

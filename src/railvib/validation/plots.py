@@ -6,6 +6,7 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
+from railvib.results import atomic_path
 from railvib.validation.case import ValidationResult
 
 __all__ = ["DEFAULT_PLOT_RESPONSES", "plot_overlays"]
@@ -64,6 +65,7 @@ def plot_overlays(
         ax.grid(True, which="both", lw=0.3)
         fig.tight_layout()
         path = out / f"{prefix}_{resp.replace('.', '_')}.png"
-        fig.savefig(path, dpi=120)
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=120, format="png")
         written.append(path)
     return written
