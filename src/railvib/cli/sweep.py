@@ -118,10 +118,7 @@ def plot(
     outdir: Path | None,
 ) -> None:
     """Plot the summary of a sweep RESULT (folder, sweep.zarr or .nc) over its axes."""
-    import matplotlib.pyplot as plt
-
-    from railvib.plot.sweep import DEFAULT_RESPONSES, plot_sweep
-    from railvib.results import atomic_path
+    from railvib.plot.sweep import DEFAULT_RESPONSES, plot_sweep, save_axes
     from railvib.sweep import load_sweep_dataset
 
     ds = load_sweep_dataset(result)
@@ -133,11 +130,8 @@ def plot(
     chosen = list(responses) or [r for r in DEFAULT_RESPONSES if r in labels]
     for variable in variables:
         for r in chosen:
-            ax = plot_sweep(ds, variable, r, x=x, y=y)
             path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
-            with atomic_path(path) as tmp:
-                ax.figure.savefig(tmp, dpi=120, format="png")
-            plt.close(ax.figure)
+            save_axes(plot_sweep(ds, variable, r, x=x, y=y), path)
             click.echo(f"written {path}")
 
 

@@ -18,11 +18,12 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
 
 from railvib.errors import CaseError  # noqa: E402
 from railvib.results.dataset import atomic_path  # noqa: E402
 
-__all__ = ["DEFAULT_RESPONSES", "plot_sweep", "save_sweep_plots", "sweep_dims"]
+__all__ = ["DEFAULT_RESPONSES", "plot_sweep", "save_axes", "save_sweep_plots", "sweep_dims"]
 
 #: responses drawn by :func:`save_sweep_plots` when present
 DEFAULT_RESPONSES = ("carbody.bounce", "wheelset1.bounce", "rail@wheel1")
@@ -85,14 +86,14 @@ def plot_sweep(
     matplotlib.axes.Axes
     """
     if variable not in ds.data_vars or "frequency" in ds[variable].dims:
-        allowed = [n for n, v in ds.data_vars.items() if "frequency" not in v.dims]
+        allowed = [str(n) for n, v in ds.data_vars.items() if "frequency" not in v.dims]
         raise CaseError("variable", variable, f"one of {', '.join(allowed)}")
     responses = [response] if isinstance(response, str) else list(response)
     labels = [str(r) for r in ds["response"].values]
     for r in responses:
         if r not in labels:
             raise CaseError("response", r, f"one of {', '.join(labels)}")
-    dims = sweep_dims(ds) or [d for d in ds[variable].dims if d != "response"]
+    dims = sweep_dims(ds) or [str(d) for d in ds[variable].dims if d != "response"]
     varying = [d for d in dims if ds.sizes[d] > 1] or dims
     for name, dim in (("x", x), ("y", y)):
         if dim is not None and dim not in dims:
@@ -143,6 +144,16 @@ def plot_sweep(
     return ax
 
 
+def save_axes(ax: Axes, path: str | Path) -> Path:
+    """Save the figure of `ax` as a PNG atomically and close it."""
+    fig = ax.get_figure(root=True)
+    assert isinstance(fig, Figure)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
+    plt.close(fig)
+    return Path(path)
+
+
 def save_sweep_plots(
     ds: xr.Dataset,
     outdir: str | Path,
@@ -174,10 +185,7 @@ def save_sweep_plots(
     written = []
     for variable in variables:
         for r in responses:
-            ax = plot_sweep(ds, variable, r)
             path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
-            with atomic_path(path) as tmp:
-                ax.figure.savefig(tmp, dpi=120, format="png")
-            plt.close(ax.figure)
+            save_axes(plot_sweep(ds, variable, r), path)
             written.append(path)
     return written

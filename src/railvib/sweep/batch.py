@@ -99,11 +99,10 @@ def frf_many_speeds(
     u_v = np.linalg.solve(a, b @ qv)  # (n_freq, n_dof, n_speed)
     force = q @ (b.T @ u_v) - qv
     rail = rec @ force
-    return BatchFRF(
-        vehicle=np.moveaxis(u_v, -1, 0),
-        rail=np.moveaxis(rail, -1, 0),
-        contact_force=np.moveaxis(force, -1, 0),
-    )
+    def first(a: NDArray[Any]) -> NDArray[np.complex128]:
+        return np.moveaxis(np.asarray(a, dtype=np.complex128), -1, 0)
+
+    return BatchFRF(vehicle=first(u_v), rail=first(rail), contact_force=first(force))
 
 
 def case_labels(system: CoupledSystem) -> list[str]:

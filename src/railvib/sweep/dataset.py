@@ -53,7 +53,7 @@ def field_unit(field: str) -> str:
 
 def summary_variables(ds: xr.Dataset) -> list[str]:
     """Names of the summary variables of a sweep dataset."""
-    return [n for n, da in ds.data_vars.items() if "frequency" not in da.dims]
+    return [str(n) for n, da in ds.data_vars.items() if "frequency" not in da.dims]
 
 
 def sweep_dataset(

@@ -116,9 +116,9 @@ class AxisSpec(_Model):
             n = int(math.floor((self.stop - self.start) / self.step + 1e-9)) + 1
             arr = self.start + self.step * np.arange(n)
         elif self.spacing == "log":
-            arr = np.geomspace(self.start, self.stop, self.num)
+            arr = np.geomspace(self.start, self.stop, int(self.num or 1))
         else:
-            arr = np.linspace(self.start, self.stop, self.num)
+            arr = np.linspace(self.start, self.stop, int(self.num or 1))
         return [float(v) for v in arr]
 
 
@@ -275,17 +275,17 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> list
             {"field": ax.field, "dim": ax.dim, "group": group, "values": values, "coords": coords}
         )
     sizes: dict[str, int] = {}
-    for ax in axes:
-        n = sizes.setdefault(ax["group"], len(ax["values"]))
-        if n != len(ax["values"]):
+    for entry in axes:
+        n = sizes.setdefault(entry["group"], len(entry["values"]))
+        if n != len(entry["values"]):
             raise CaseError(
-                f"axes.{ax['field']}", len(ax["values"]),
-                f"zipped axes of group {ax['group']!r} need equal lengths ({n})",
+                f"axes.{entry['field']}", len(entry["values"]),
+                f"zipped axes of group {entry['group']!r} need equal lengths ({n})",
             )
-    for ax in axes:
-        if ax["dim"] in sizes and ax["dim"] != ax["group"]:
+    for entry in axes:
+        if entry["dim"] in sizes and entry["dim"] != entry["group"]:
             raise CaseError(
-                f"axes.{ax['field']}", ax["dim"],
+                f"axes.{entry['field']}", entry["dim"],
                 "an axis name distinct from other groups' zip labels",
             )
     return axes

@@ -224,7 +224,7 @@ class ChunkStore:
         payload = {k.replace("/", "__"): v for k, v in arrays.items()}
         with atomic_path(path) as tmp:
             with open(tmp, "wb") as fh:
-                np.savez(fh, fingerprint=np.array(self.fingerprint), **payload)
+                np.savez(fh, fingerprint=np.array(self.fingerprint), **payload)  # type: ignore[arg-type]
         return path
 
     def read(self, chunk_id: int) -> dict[str, NDArray[Any]]:
@@ -268,7 +268,7 @@ class ChunkStore:
             encoding = {}
             block = dict(zip(self.layout.dims, self.layout.block, strict=True))
             for name, da in ds.data_vars.items():
-                encoding[name] = {"chunks": tuple(block.get(d, da.sizes[d]) for d in da.dims)}
+                encoding[name] = {"chunks": tuple(block.get(str(d), da.sizes[d]) for d in da.dims)}
             ds.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True,
                        encoding=encoding)
             if target.exists():
