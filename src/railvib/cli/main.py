@@ -15,17 +15,11 @@ __all__ = ["cli", "main"]
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="railvib")
 def cli() -> None:
-    r"""railvib: random vibration of a vehicle on an infinite periodic track.
+    """railvib: random vibration of a vehicle on an infinite periodic track.
 
-    \b
-    railvib reproduce            the paper's study (figures, table, HTML report)
-    railvib run CASE.toml -o OUT one case: PSD dataset (netCDF, CSV), summary, plots
-    railvib template             a fully commented default case file
-    railvib presets              the shipped presets
-    railvib pad fit DATA.csv     railpad master curves and models from measurements
-    railvib validate CASE.toml   check PEM against finite-track and time-domain models
-
-    Units are SI unless a key names its unit; PSDs are one-sided per Hz.
+    Start with `railvib reproduce` (the paper's study: figures, table, HTML report) or
+    `railvib template > case.toml` then `railvib run case.toml -o out/`. Units are SI
+    unless a key names its unit; PSDs are one-sided per Hz. Each command has --help.
     """
 
 

@@ -82,7 +82,7 @@ def plot_psd(
     ax.set_xlabel(axis_label(ds["frequency"]))
     ax.set_ylabel(axis_label(ds[variable]))
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize="small")
+    ax.legend(fontsize="small", loc="upper right")
     return ax
 
 
