@@ -18,7 +18,8 @@ def cli() -> None:
     """railvib: random vibration of a vehicle on an infinite periodic track.
 
     Start with `railvib reproduce` (the paper's study: figures, table, HTML report) or
-    `railvib template > case.toml` then `railvib run case.toml -o out/`. Units are SI
+    `railvib template > case.toml` then `railvib run case.toml -o out/`; many cases with
+    `railvib sweep SWEEP.toml` (then `railvib plot SWEEP_OUT`). Units are SI
     unless a key names its unit; PSDs are one-sided per Hz. Each command has --help.
     """
 
@@ -70,6 +71,7 @@ def _register_optional() -> None:
         ("railvib.cli.validate", "validate"),
         ("railvib.cli.reproduce", "reproduce"),
         ("railvib.cli.sweep", "sweep"),
+        ("railvib.cli.sweep", "plot"),
     ):
         try:
             mod = importlib.import_module(module)

@@ -9,7 +9,7 @@ import click
 __all__ = ["reproduce"]
 
 
-@click.command()
+@click.command(short_help="The paper's study: Figs. 9-16, its numbers beside ours, HTML report.")
 @click.option(
     "-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
     default=Path("railvib-reproduce"), show_default=True, help="output folder",
