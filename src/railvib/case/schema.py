@@ -79,7 +79,7 @@ class TrackSection(_Section):
     rail: RailSection
     pad: dict[str, Any] = Field(
         ...,
-        description="railpad model: model = spring_damper | hysteretic | log_linear | "
+        description="railpad model: model = spring_damper | hysteretic | log_linear | tabulated | "
         "constant_phase | zener | fractional_zener | prony | ..., plus its parameters",
     )
     pad_temperature_c: float | None = Field(

@@ -82,7 +82,7 @@ def render_template(preset: str = DEFAULT_PRESET) -> str:
         f'#   preset = "{preset}"',
         "# and override only the keys you change.",
         "# [track.pad] models: spring_damper, hysteretic, log_linear, constant_phase,",
-        "#   fractional_zener, generalized_maxwell (see `railvib pad --help`).",
+        "#   fractional_zener, generalized_maxwell, tabulated (see `railvib pad --help`).",
         "# [irregularity] types: fra, shitai, sato, german, chinese_hsr, combined, tabulated.",
         "",
     ]

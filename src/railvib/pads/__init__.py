@@ -31,6 +31,7 @@ from railvib.pads.io import (
     wj7_example_csv,
 )
 from railvib.pads.simple import ConstantPhase, Hysteretic, LogLinear, SpringDamper
+from railvib.pads.tabulated import TabulatedPad
 from railvib.pads.tts import (
     DEFAULT_EXPANSION_COEFFICIENT_PER_K,
     UNIVERSAL_C1,
@@ -60,6 +61,7 @@ __all__ = [
     "ModelFit",
     "PadModel",
     "SpringDamper",
+    "TabulatedPad",
     "TemperatureShifted",
     "build_master_curve",
     "fit_free_shifts",

@@ -27,9 +27,7 @@ class PadModel(ABC):
     model_name: str = ""
 
     @abstractmethod
-    def stiffness(
-        self, f: ArrayLike, temperature: float | None = None
-    ) -> NDArray[np.complex128]:
+    def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """Complex dynamic stiffness ``K*(f, T)`` in N/m.
 
         Parameters

@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.pads.simple import ConstantPhase, Hysteretic, LogLinear, SpringDamper
+from railvib.pads.tabulated import TabulatedPad
 from railvib.pads.tts import DEFAULT_EXPANSION_COEFFICIENT_PER_K, WLF, TemperatureShifted
 from railvib.pads.viscoelastic import FractionalZener, GeneralizedMaxwell
 
@@ -38,7 +39,7 @@ __all__ = [
     "wj7_example_csv",
 ]
 
-_FLOAT, _BOOL, _FLOATS = "number", "boolean", "list of numbers"
+_FLOAT, _BOOL = "number", "boolean"
 
 
 @dataclass(frozen=True)
@@ -99,6 +100,14 @@ PAD_MODELS: dict[str, _Spec] = {
             "k_inf_n_per_m": ("k_inf_n_per_m", _FLOAT, _REQUIRED),
             "k_n_per_m": ("k_n_per_m", _FLOAT + "s", _REQUIRED),
             "tau_s": ("tau_s", _FLOAT + "s", _REQUIRED),
+        },
+    ),
+    "tabulated": _Spec(
+        TabulatedPad,
+        {
+            "frequency_hz": ("frequency_hz", _FLOAT + "s", _REQUIRED),
+            "storage_n_per_m": ("storage_n_per_m", _FLOAT + "s", _REQUIRED),
+            "loss_n_per_m": ("loss_n_per_m", _FLOAT + "s", _REQUIRED),
         },
     ),
 }
