@@ -233,10 +233,12 @@ def validate_case(
     frf = np.concatenate([h.vehicle, h.rail], axis=1)
     s_fin = acceleration_psd(f, np.abs(frf) ** 2 * spectrum.temporal(f, speed)[:, None])
     timings["finite_track_seconds"] = time.perf_counter() - t0
-    labels = tuple(vehicle.dofs) + tuple(f"rail.wheel{j + 1}" for j in range(h.rail.shape[1]))
+    labels = tuple(vehicle.dofs) + tuple(f"rail@wheel{j + 1}" for j in range(h.rail.shape[1]))
     rel = np.abs(s_fin / s_pem - 1.0)
-    coords = {"frequency": ("frequency", f, {"units": "Hz", "long_name": "frequency"})}
-    coords["response"] = ("response", list(labels), {"long_name": "response"})
+    coords: dict[str, tuple[str, object, dict[str, str]]] = {
+        "frequency": ("frequency", f, {"units": "Hz", "long_name": "frequency"}),
+        "response": ("response", list(labels), {"long_name": "response"}),
+    }
     units = _units(labels)
     ds_frf = xr.Dataset(
         {
@@ -244,17 +246,17 @@ def validate_case(
                 ("frequency", "response"),
                 s_pem,
                 {"units": "see attrs", "long_name": "PEM acceleration PSD, one-sided"},
-            ),  # noqa: E501
+            ),
             "finite_psd": (
                 ("frequency", "response"),
                 s_fin,
                 {"units": "see attrs", "long_name": "finite-track acceleration PSD, one-sided"},
-            ),  # noqa: E501
+            ),
             "relative_error": (
                 ("frequency", "response"),
                 rel,
                 {"units": "1", "long_name": "|finite / PEM - 1|"},
-            ),  # noqa: E501
+            ),
         },
         coords=coords,
         attrs={"psd_units": units, "elements_per_span": s.frf_elements_per_span},
@@ -287,8 +289,10 @@ def validate_case(
     s_raw = pem(fb)
     inside = (s_exp >= lower) & (s_exp <= upper)
     inside_raw = (s_raw >= lower) & (s_raw <= upper)
-    coords_mc = {"frequency": ("frequency", fb, {"units": "Hz", "long_name": "Welch bin"})}
-    coords_mc["response"] = coords["response"]
+    coords_mc = {
+        "frequency": ("frequency", fb, {"units": "Hz", "long_name": "Welch bin"}),
+        "response": coords["response"],
+    }
     dims = ("frequency", "response")
     ds_mc = xr.Dataset(
         {
@@ -297,18 +301,18 @@ def validate_case(
                 dims,
                 s_exp,
                 {"units": "see attrs", "long_name": "PEM PSD through the Welch window"},
-            ),  # noqa: E501
+            ),
             "mc_psd": (dims, s_mc, {"units": "see attrs", "long_name": "Monte Carlo Welch PSD"}),
             "mc_lower": (
                 dims,
                 lower,
                 {"units": "see attrs", "long_name": "lower confidence limit"},
-            ),  # noqa: E501
+            ),
             "mc_upper": (
                 dims,
                 upper,
                 {"units": "see attrs", "long_name": "upper confidence limit"},
-            ),  # noqa: E501
+            ),
             "inside": (dims, inside, {"units": "1", "long_name": "PEM (windowed) inside band"}),
             "inside_raw": (dims, inside_raw, {"units": "1", "long_name": "PEM (raw) inside band"}),
         },
@@ -344,22 +348,22 @@ def validate_case(
                 ("band", "response"),
                 err_tab,
                 {"units": "1", "long_name": "finite track vs PEM, max |S_fe/S_pem - 1|"},
-            ),  # noqa: E501
+            ),
             "fraction_inside": (
                 ("band", "response"),
                 in_tab,
                 {"units": "1", "long_name": "fraction of bins with windowed PEM inside MC band"},
-            ),  # noqa: E501
+            ),
             "fraction_inside_raw": (
                 ("band", "response"),
                 raw_tab,
                 {"units": "1", "long_name": "fraction of bins with raw PEM inside MC band"},
-            ),  # noqa: E501
+            ),
         },
         coords={
             "band": ("band", names, {"units": "Hz", "long_name": "frequency band"}),
             "response": coords["response"],
-        },  # noqa: E501
+        },
     )
     return ValidationResult(frf=ds_frf, mc=ds_mc, table=table, timings=timings)
 

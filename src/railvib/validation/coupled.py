@@ -23,6 +23,8 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
 
 from railvib.errors import CaseError
+from railvib.pads.base import PadModel
+from railvib.track.periodic import Rail  # the parameter record only, not the solver
 from railvib.validation.finite_track import FiniteTrack
 from railvib.vehicle.assembly import Vehicle
 
@@ -86,8 +88,8 @@ class FiniteCoupledSystem:
     def build(
         cls,
         vehicle: Vehicle,
-        rail,  # noqa: ANN001 - railvib.track.periodic.Rail
-        pad,  # noqa: ANN001 - railvib.pads.base.PadModel
+        rail: Rail,
+        pad: PadModel,
         sleeper_spacing: float,
         contact_stiffness: float,
         leading_wheel_position: float,
@@ -219,8 +221,8 @@ class FiniteCoupledSystem:
 
 def finite_track_frf(
     vehicle: Vehicle,
-    rail,  # noqa: ANN001 - railvib.track.periodic.Rail
-    pad,  # noqa: ANN001 - railvib.pads.base.PadModel
+    rail: Rail,
+    pad: PadModel,
     sleeper_spacing: float,
     contact_stiffness: float,
     leading_wheel_position: float,

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
+from railvib.pads.simple import SpringDamper
 from railvib.track.periodic import Rail
 
 __all__ = ["FiniteTrack", "hermite_element_matrices"]
@@ -275,14 +276,13 @@ class FiniteTrack:
             If the pad is not a spring-damper or the rail has a loss factor, which
             have no exact time-domain counterpart here.
         """
-        k_pad = getattr(self.pad, "stiffness_n_per_m", None)
-        c_pad = getattr(self.pad, "damping_ns_per_m", None)
-        if getattr(self.pad, "model_name", "") != "spring_damper" or k_pad is None:
+        if not isinstance(self.pad, SpringDamper):
             raise CaseError(
                 "track.pad.model",
                 getattr(self.pad, "model_name", type(self.pad).__name__),
                 "spring_damper (the time-domain model needs a viscous pad)",
             )
+        k_pad, c_pad = self.pad.stiffness_n_per_m, self.pad.damping_ns_per_m
         if self.rail.loss_factor != 0.0:
             raise CaseError(
                 "track.rail.loss_factor", self.rail.loss_factor, "0 for the time-domain model"

@@ -8,7 +8,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from railvib.errors import CaseError
+from railvib.pads.base import PadModel
 from railvib.spectra.base import SpatialSpectrum
+from railvib.track.periodic import Rail  # the parameter record only, not the solver
 from railvib.validation.coupled import FiniteCoupledSystem
 from railvib.validation.samples import wheel_irregularities
 from railvib.validation.statistics import WelchEstimate, welch_psd
@@ -101,7 +103,7 @@ class MonteCarloResult:
     estimate : WelchEstimate
         PSDs in (m/s^2)^2/Hz ((rad/s^2)^2/Hz for pitch), ``(n_freq, n_output)``.
     labels : tuple of str
-        Output names (vehicle DOFs, then ``rail.wheel1`` ...).
+        Output names (vehicle DOFs, then ``rail@wheel1`` ...).
     system : FiniteCoupledSystem
         The finite model integrated in time.
     """
@@ -113,8 +115,8 @@ class MonteCarloResult:
 
 def monte_carlo(
     vehicle: Vehicle,
-    rail,  # noqa: ANN001 - railvib.track.periodic.Rail
-    pad,  # noqa: ANN001 - railvib.pads.simple.SpringDamper
+    rail: Rail,
+    pad: PadModel,
     sleeper_spacing: float,
     contact_stiffness: float,
     leading_wheel_position: float,

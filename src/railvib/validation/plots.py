@@ -12,7 +12,7 @@ from railvib.validation.case import ValidationResult
 __all__ = ["DEFAULT_PLOT_RESPONSES", "plot_overlays"]
 
 #: car body, bogie, wheelset and rail (the paper's figures)
-DEFAULT_PLOT_RESPONSES = ("carbody.bounce", "bogie1.bounce", "wheelset2.bounce", "rail.wheel1")
+DEFAULT_PLOT_RESPONSES = ("carbody.bounce", "bogie1.bounce", "wheelset2.bounce", "rail@wheel1")
 
 
 def plot_overlays(
@@ -64,7 +64,7 @@ def plot_overlays(
         ax.legend(fontsize=8)
         ax.grid(True, which="both", lw=0.3)
         fig.tight_layout()
-        path = out / f"{prefix}_{resp.replace('.', '_')}.png"
+        path = out / f"{prefix}_{resp.replace('.', '_').replace('@', '_')}.png"
         with atomic_path(path) as tmp:
             fig.savefig(tmp, dpi=120, format="png")
         written.append(path)

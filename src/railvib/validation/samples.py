@@ -100,7 +100,8 @@ def sample_profile(
     phases = rng.uniform(0.0, 2.0 * np.pi, amp.size)
     coeff = np.zeros(n_points // 2 + 1, dtype=complex)
     coeff[1 : n_points // 2] = 0.5 * n_points * amp * np.exp(1j * phases)
-    return np.arange(n_points) * dx, np.fft.irfft(coeff, n=n_points)
+    x = np.arange(n_points, dtype=np.float64) * dx
+    return x, np.asarray(np.fft.irfft(coeff, n=n_points), dtype=np.float64)
 
 
 def wheel_irregularities(

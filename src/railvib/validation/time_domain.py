@@ -61,7 +61,7 @@ def output_dofs(system: FiniteCoupledSystem) -> tuple[NDArray[np.intp], tuple[st
     """Global DOF indices and labels of the outputs: vehicle DOFs, then rail under the wheels."""
     nv = system.n_vehicle
     labels = tuple(system.vehicle.dofs) + tuple(
-        f"rail.wheel{j + 1}" for j in range(system.rail_dofs.size)
+        f"rail@wheel{j + 1}" for j in range(system.rail_dofs.size)
     )
     return np.concatenate([np.arange(nv), system.rail_dofs]), labels
 
