@@ -102,3 +102,30 @@ def test_coupled_psds_match_finite_track(paper_vehicle, paper_track, x0):
     rel = np.abs(got - ref) / ref
     worst = rel.max()
     assert worst < 1e-2, f"worst relative PSD difference {worst:.2e}"
+
+
+def test_contact_linearity_check():
+    from scipy.stats import norm
+
+    import railvib
+
+    ds = railvib.run(railvib.load_preset_case())
+    p0 = (21920 / 4 + 2550 / 2 + 1420) * 9.81  # per wheelset contact on the one-rail beam
+    np.testing.assert_allclose(ds.static_contact_load, p0, rtol=1e-12)
+    sigma = np.sqrt(np.trapezoid(ds.psd_force.values, ds.frequency.values, axis=0))
+    np.testing.assert_allclose(ds.contact_force_rms, sigma, rtol=1e-3)
+    assert np.all(ds.loss_of_contact_probability < 0.01)
+    np.testing.assert_allclose(ds.loss_of_contact_probability, norm.cdf(-p0 / sigma), rtol=1e-2)
+    # a poor track (FRA class 1) at 160 km/h lifts the wheels: flagged
+    rough = railvib.case_from_dict(
+        {
+            "preset": "wang2017_metro",
+            "speed_kmh": 160.0,
+            "irregularity": {
+                "type": "combined",
+                "long_wave": {"type": "fra", "class_number": 1},
+                "short_wave": {"type": "sato", "coefficient": 5e-7},
+            },
+        }
+    )
+    assert float(railvib.run(rough).loss_of_contact_probability.max()) > 0.01

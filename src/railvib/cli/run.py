@@ -8,7 +8,7 @@ import click
 
 from railvib.case import load_case
 from railvib.results import atomic_path, save_csv, save_netcdf, summary
-from railvib.solve import run
+from railvib.solve import LOSS_OF_CONTACT_NOTE, run
 
 __all__ = ["run_case_command"]
 
@@ -31,4 +31,12 @@ def run_case_command(case_file: Path, outdir: Path, plots: bool = True) -> None:
 
         save_overview(ds, outdir)
     click.echo(table.to_string(float_format=lambda v: f"{v:.4g}"))
+    worst = float(ds.loss_of_contact_probability.max())
+    if worst > LOSS_OF_CONTACT_NOTE:
+        click.echo(
+            f"\nnote: dynamic contact force RMS {float(ds.contact_force_rms.max()):.3g} N against "
+            f"a static load of {float(ds.static_contact_load.min()):.3g} N: loss of wheel-rail "
+            f"contact has probability {worst:.1%} (Gaussian estimate). PEM assumes permanent "
+            "contact, so treat the results near the contact resonances with care."
+        )
     click.echo(f"\nwritten to {outdir}/")
