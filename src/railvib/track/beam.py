@@ -20,6 +20,7 @@ sleeper spacing) and ``beta4`` is ``m omega^2 L0^4 / EI*``.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -56,13 +57,18 @@ def krylov_series(beta4: ArrayLike, length: float) -> tuple[NDArray[np.complex12
     x = float(length)
     zeta = beta4 * x**4
     n = _n_terms(beta4, x)
-    sums: list[NDArray[np.complex128]] = []
-    for j in range(4):
-        acc = np.zeros_like(zeta)
-        for k in range(n - 1, -1, -1):  # Horner in zeta, highest term first
-            acc = acc * zeta + 1.0 / math.factorial(4 * k + j)
-        sums.append(np.asarray(acc * x**j, dtype=np.complex128))
-    return tuple(sums)
+    coeff = _inverse_factorials(n)  # (n, 4): 1 / (4k + j)!
+    acc = np.zeros((4,) + zeta.shape, dtype=np.complex128)
+    for k in range(n - 1, -1, -1):  # Horner in zeta for all four sums at once
+        acc *= zeta
+        acc += coeff[k].reshape((4,) + (1,) * zeta.ndim)
+    return tuple(acc[j] * x**j for j in range(4))
+
+
+@lru_cache(maxsize=8)
+def _inverse_factorials(n: int) -> NDArray[np.float64]:
+    """``1 / (4k + j)!`` for k < n, j < 4, shape ``(n, 4)``."""
+    return np.array([[1.0 / math.factorial(4 * k + j) for j in range(4)] for k in range(n)])
 
 
 def field_transfer(beta4: ArrayLike, length: float) -> NDArray[np.complex128]:
