@@ -132,3 +132,23 @@ def test_rail_pair_mode_doubles_beam_pads_and_contact():
     assert k2[0] == pytest.approx(2 * k1[0])
     # physics.md §2: k_H at the 40.10 kN wheel load is 9.873e8 N/m
     assert single.contact_stiffness == pytest.approx(9.873e8, rel=1e-3)
+
+
+def test_presets_nest_and_cycles_are_refused(monkeypatch):
+    import railvib.presets as presets
+
+    texts = {
+        "a": 'preset = "b"\ntitle = "A"\n',
+        "b": 'preset = "wang2017_metro"\nspeed_kmh = 60.0\n',
+        "c": 'preset = "d"\n',
+        "d": 'preset = "c"\n',
+        "wang2017_metro": presets.preset_text("wang2017_metro"),
+    }
+    monkeypatch.setattr(presets, "preset_text", lambda name: texts[name])
+    data = presets.load_preset("a")
+    assert (data["title"], data["speed_kmh"]) == ("A", 60.0)
+    assert data["vehicle"]["carbody_mass"] == 21920.0
+    with pytest.raises(
+        CaseError, match=re.escape("preset = 'c': no cycle of presets (c -> d -> c)")
+    ):
+        presets.load_preset("c")

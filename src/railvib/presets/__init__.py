@@ -1,7 +1,7 @@
 """Named presets shipped as TOML data (with provenance notes next to each value).
 
-``presets/cases/<name>.toml`` are complete case files; a user case names one
-with ``preset = "<name>"`` and overrides any field.
+``presets/cases/<name>.toml`` are case files; a user case (or another preset)
+names one with ``preset = "<name>"`` and overrides any field.
 """
 
 from __future__ import annotations
@@ -35,6 +35,18 @@ def preset_text(name: str) -> str:
     return _case_dir().joinpath(f"{name}.toml").read_text(encoding="utf-8")
 
 
-def load_preset(name: str) -> dict[str, Any]:
-    """The parsed tables of preset `name`."""
-    return tomllib.loads(preset_text(name))
+def load_preset(name: str, _chain: tuple[str, ...] = ()) -> dict[str, Any]:
+    """The parsed tables of preset `name`, with any preset it names merged underneath.
+
+    A preset may itself start from another with ``preset = "<name>"`` and override
+    fields, exactly like a user's case file.
+    """
+    if name in _chain:
+        raise CaseError("preset", name, f"no cycle of presets ({' -> '.join((*_chain, name))})")
+    data = tomllib.loads(preset_text(name))
+    parent = data.pop("preset", None)
+    if parent is None:
+        return data
+    from railvib.case.load import merge_case_dicts
+
+    return merge_case_dicts(load_preset(parent, (*_chain, name)), data)
