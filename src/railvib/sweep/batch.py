@@ -20,12 +20,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.case import Case, build_grid, build_spectrum, build_system, case_from_dict
 from railvib.case.load import merge_case_dicts
-from railvib.coupling import CoupledSystem
+from railvib.coupling import CoupledSystem, coupled_response
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.results.stats import summary
 from railvib.sweep.layout import SweepLayout, is_cheap_field
 from railvib.sweep.spec import nested_override
 from railvib.units import kmh_to_ms
+from railvib.vehicle.assembly import WheelCondensation
 
 __all__ = [
     "BatchFRF",
@@ -60,6 +61,7 @@ def frf_many_speeds(
     f: ArrayLike,
     speeds: ArrayLike,
     receptance: NDArray[np.complex128] | None = None,
+    condensation: WheelCondensation | None = None,
 ) -> BatchFRF:
     """Solve the coupled FRFs of `system` at several speeds in one batched solve.
 
@@ -77,6 +79,9 @@ def frf_many_speeds(
     receptance : numpy.ndarray, optional
         Rail receptance between the contact points, ``(n_freq, n_wheel, n_wheel)``
         in m/N, if already known (it depends on the track and wheel positions only).
+    condensation : WheelCondensation, optional
+        The vehicle condensed onto its wheels at `f`, if already known (it depends
+        on the vehicle only, so cases with many pads share it).
 
     Returns
     -------
@@ -85,20 +90,16 @@ def frf_many_speeds(
     f = np.atleast_1d(np.asarray(f, dtype=float))
     speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
     x = system.wheel_positions
-    n_wheel = x.size
     rec = system.track.receptance(f, x, x) if receptance is None else receptance
-    q = np.linalg.inv(rec + np.eye(n_wheel) / system.contact_stiffness)
-    b = system.vehicle.wheel_matrix
+    if condensation is None:
+        condensation = system.vehicle.condensed_to_wheels(f)
     # excitation of every speed as columns: (n_freq, n_wheel, n_speed)
     v = np.stack(
         [excitation_vector(f, wheel_delays(system.vehicle.wheel_offsets, s)) for s in speeds],
         axis=-1,
     )
-    qv = q @ v
-    a = system.vehicle.dynamic_stiffness(f) + b @ q @ b.T
-    u_v = np.linalg.solve(a, b @ qv)  # (n_freq, n_dof, n_speed)
-    force = q @ (b.T @ u_v) - qv
-    rail = rec @ force
+    u_v, force, rail = coupled_response(condensation, rec, system.contact_stiffness, v)
+
     def first(a: NDArray[Any]) -> NDArray[np.complex128]:
         return np.moveaxis(np.asarray(a, dtype=np.complex128), -1, 0)
 
@@ -175,6 +176,7 @@ def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]
     force_all: NDArray[np.complex128] | None = None
     s_r = np.empty((n_case, f.size))
     receptances: dict[str, NDArray[np.complex128]] = {}
+    condensations: dict[str, WheelCondensation] = {}
     spectra: dict[str, Any] = {}
     for members in groups.values():
         case = case_from_dict(cases[members[0]])
@@ -183,9 +185,16 @@ def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]
         if tkey not in receptances:
             x = system.wheel_positions
             receptances[tkey] = system.track.receptance(f, x, x)
+        vkey = _key(cases[members[0]]["vehicle"])
+        if vkey not in condensations:
+            condensations[vkey] = system.vehicle.condensed_to_wheels(f)
         speeds = sorted({cases[i]["speed_kmh"] for i in members})
         batch = frf_many_speeds(
-            system, f, [kmh_to_ms(s) for s in speeds], receptance=receptances[tkey]
+            system,
+            f,
+            [kmh_to_ms(s) for s in speeds],
+            receptance=receptances[tkey],
+            condensation=condensations[vkey],
         )
         if frf_all is None:
             n_resp = batch.vehicle.shape[2] + batch.rail.shape[2]

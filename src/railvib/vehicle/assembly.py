@@ -11,9 +11,26 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.vehicle.parts import Attachment, RigidBody, Suspension, Wheel
 
-__all__ = ["Vehicle"]
+__all__ = ["Vehicle", "WheelCondensation"]
 
 GRAVITY = 9.81  # m/s^2
+
+
+@dataclass(frozen=True, eq=False)
+class WheelCondensation:
+    """A vehicle's dynamic stiffness condensed onto its wheel DOFs.
+
+    Attributes
+    ----------
+    stiffness : numpy.ndarray
+        ``(n_freq, n_wheel, n_wheel)``, N/m: wheel forces per wheel displacement with
+        the bodies free.
+    recovery : numpy.ndarray
+        ``(n_freq, n_dof, n_wheel)``: all DOF displacements per wheel displacement.
+    """
+
+    stiffness: NDArray[np.complex128]
+    recovery: NDArray[np.complex128]
 
 
 @dataclass(frozen=True)
@@ -30,7 +47,8 @@ class Vehicle:
     suspensions : tuple of Suspension
         Spring-damper connections between body points.
     wheels : tuple of Wheel
-        Contacts, listed from the leading wheel backwards.
+        Contacts, listed from the leading wheel backwards, one per wheelset body
+        (a body without a pitch DOF).
     """
 
     bodies: tuple[RigidBody, ...]
@@ -51,6 +69,11 @@ class Vehicle:
         for w in self.wheels:
             if w.body not in names:
                 raise CaseError("vehicle.wheels", w.body, f"a body among {names}")
+            if self._body(w.body).pitch_inertia is not None:
+                raise CaseError("vehicle.wheels", w.body, "a body without a pitch DOF (a wheelset)")
+        carriers = [w.body for w in self.wheels]
+        if len(set(carriers)) != len(carriers):
+            raise CaseError("vehicle.wheels", carriers, "one wheel per wheelset body")
 
     @cached_property
     def dofs(self) -> tuple[str, ...]:
@@ -115,6 +138,52 @@ class Vehicle:
         out.real = self.stiffness_matrix - omega**2 * self.mass_matrix
         out.imag = omega * self.damping_matrix
         return out
+
+    @cached_property
+    def wheel_dofs(self) -> NDArray[np.int64]:
+        """Index of the bounce DOF of each wheel's wheelset (``B`` is a selection)."""
+        return np.array([self.dofs.index(f"{w.body}.bounce") for w in self.wheels])
+
+    def condensed_to_wheels(self, f: ArrayLike) -> WheelCondensation:
+        """Dynamic stiffness condensed onto the wheel DOFs, with the body recovery.
+
+        With the DOFs split into bodies ``b`` and wheels ``w``,
+        ``S = D_ww - D_wb D_bb^-1 D_bw`` and ``u = R u_w`` with ``R_b = -D_bb^-1 D_bw``.
+        ``D_bb`` (the vehicle with its wheels held) is regular at every ``f > 0`` and at
+        ``f = 0``, so no digits are lost at low frequency.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+
+        Returns
+        -------
+        WheelCondensation
+        """
+        order = self._body_then_wheel_order
+        n_b = order.size - self.wheel_dofs.size
+        omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
+        m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
+        d = np.empty((omega.shape[0],) + m.shape, dtype=complex)
+        d.real = k - omega**2 * m
+        d.imag = omega * c
+        x = np.linalg.solve(d[:, :n_b, :n_b], d[:, :n_b, n_b:])  # D_bb^-1 D_bw
+        stiffness = d[:, n_b:, n_b:] - d[:, n_b:, :n_b] @ x
+        recovery = np.empty((d.shape[0], order.size, order.size - n_b), dtype=complex)
+        recovery[:, order[:n_b], :] = -x
+        recovery[:, order[n_b:], :] = np.eye(order.size - n_b)
+        return WheelCondensation(stiffness=stiffness, recovery=recovery)
+
+    @cached_property
+    def _body_then_wheel_order(self) -> NDArray[np.int64]:
+        """DOF indices reordered: sprung-body DOFs first, then the wheel DOFs in wheel order."""
+        w = self.wheel_dofs
+        return np.concatenate([np.setdiff1d(np.arange(len(self.dofs)), w), w])
+
+    @property
+    def _matrices(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        return self.mass_matrix, self.damping_matrix, self.stiffness_matrix
 
     def static_wheel_loads(self, gravity: float = GRAVITY) -> NDArray[np.float64]:
         """Static load carried at each wheel contact (N), wheels held rigidly.
