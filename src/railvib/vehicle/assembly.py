@@ -170,10 +170,12 @@ class Vehicle:
         d.imag = omega * c
         x = np.linalg.solve(d[:, :n_b, :n_b], d[:, :n_b, n_b:])  # D_bb^-1 D_bw
         stiffness = d[:, n_b:, n_b:] - d[:, n_b:, :n_b] @ x
-        recovery = np.empty((d.shape[0], order.size, order.size - n_b), dtype=complex)
+        recovery = np.empty((d.shape[0], order.size, order.size - n_b), dtype=np.complex128)
         recovery[:, order[:n_b], :] = -x
         recovery[:, order[n_b:], :] = np.eye(order.size - n_b)
-        return WheelCondensation(stiffness=stiffness, recovery=recovery)
+        return WheelCondensation(
+            stiffness=np.asarray(stiffness, dtype=np.complex128), recovery=recovery
+        )
 
     @cached_property
     def _body_then_wheel_order(self) -> NDArray[np.int64]:
