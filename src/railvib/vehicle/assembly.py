@@ -162,7 +162,8 @@ class Vehicle:
         WheelCondensation
         """
         order = self._body_then_wheel_order
-        n_b = order.size - self.wheel_dofs.size
+        n_dof, n_w = int(order.size), int(self.wheel_dofs.size)
+        n_b = n_dof - n_w
         omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
         m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
         d = np.empty((omega.shape[0],) + m.shape, dtype=complex)
@@ -170,9 +171,9 @@ class Vehicle:
         d.imag = omega * c
         x = np.linalg.solve(d[:, :n_b, :n_b], d[:, :n_b, n_b:])  # D_bb^-1 D_bw
         stiffness = d[:, n_b:, n_b:] - d[:, n_b:, :n_b] @ x
-        recovery = np.empty((d.shape[0], order.size, order.size - n_b), dtype=np.complex128)
+        recovery = np.empty((int(d.shape[0]), n_dof, n_w), dtype=np.complex128)
         recovery[:, order[:n_b], :] = -x
-        recovery[:, order[n_b:], :] = np.eye(order.size - n_b)
+        recovery[:, order[n_b:], :] = np.eye(n_w)
         return WheelCondensation(
             stiffness=np.asarray(stiffness, dtype=np.complex128), recovery=recovery
         )
