@@ -166,7 +166,7 @@ class Vehicle:
         n_b = n_dof - n_w
         omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
         m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
-        d = np.empty((omega.shape[0],) + m.shape, dtype=complex)
+        d = np.empty((int(omega.shape[0]), n_dof, n_dof), dtype=np.complex128)
         d.real = k - omega**2 * m
         d.imag = omega * c
         x = np.linalg.solve(d[:, :n_b, :n_b], d[:, :n_b, n_b:])  # D_bb^-1 D_bw
