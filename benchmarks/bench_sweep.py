@@ -45,8 +45,13 @@ PAD = {
 
 def sweep_dict(structural: bool = False) -> dict:
     second = (
-        {"field": "track.pad.k0_n_per_m", "start": 2.0e7, "stop": 8.0e7, "num": 100,
-         "spacing": "log"}
+        {
+            "field": "track.pad.k0_n_per_m",
+            "start": 2.0e7,
+            "stop": 8.0e7,
+            "num": 100,
+            "spacing": "log",
+        }
         if structural
         else {"field": "speed_kmh", "start": 40.0, "stop": 160.0, "num": 100}
     )
@@ -105,16 +110,23 @@ def main() -> None:
     for structural in kinds:
         spec = sweep_from_dict(sweep_dict(structural))
         n = SweepLayout(spec).n_cases
-        label = "10 temperatures x 100 pad stiffnesses" if structural else (
-            "10 temperatures x 100 speeds")
+        label = (
+            "10 temperatures x 100 pad stiffnesses"
+            if structural
+            else ("10 temperatures x 100 speeds")
+        )
         wall = time_sweep(spec, args.workers)
         per_case = time_one_by_one(spec, args.sample)
         serial = per_case * n
         print(f"\n{label}: {n} cases x 1000 frequencies")
-        print(f"  railvib sweep, {args.workers} workers: {wall:7.2f} s "
-              f"({n / wall:,.0f} cases/s; goal <= 10 s)")
-        print(f"  one by one (railvib.run, 1 process): {per_case * 1e3:6.1f} ms/case "
-              f"-> {serial:7.1f} s for {n} (from {min(args.sample, n)} cases)")
+        print(
+            f"  railvib sweep, {args.workers} workers: {wall:7.2f} s "
+            f"({n / wall:,.0f} cases/s; goal <= 10 s)"
+        )
+        print(
+            f"  one by one (railvib.run, 1 process): {per_case * 1e3:6.1f} ms/case "
+            f"-> {serial:7.1f} s for {n} (from {min(args.sample, n)} cases)"
+        )
         print(f"  speed-up: {serial / wall:5.1f}x")
 
 

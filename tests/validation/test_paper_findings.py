@@ -47,8 +47,9 @@ def test_carbody_unaffected_by_pad_law_and_temperature(results, cases):
     assert _body_share_below(results, ref, 10.0) > 0.99
     a, b = (_psd(results, c, BODY, (0.5, 10.0)) for c in cases)
     assert float(np.abs(b / a - 1.0).max()) < 0.05
-    assert peak(results, other, BODY, WHOLE) == pytest.approx(peak(results, ref, BODY, WHOLE),
-                                                              rel=0.01)
+    assert peak(results, other, BODY, WHOLE) == pytest.approx(
+        peak(results, ref, BODY, WHOLE), rel=0.01
+    )
     assert rms_ratio(results, (other, ref), BODY, (0.5, 20.0)) == pytest.approx(1.0, rel=0.01)
 
 
@@ -68,12 +69,15 @@ def test_frequency_dependence_moves_bogie_vibration_up(results):
     # Fig. 10(b): frequency dependence lowers the bogie peak in 20-45 Hz (point A) and raises
     # it in 45-100 Hz (point B); Fig. 10(a): no difference at the 7 Hz peak (relative 1e-3
     # is far below what the paper's plot resolves).
-    assert peak(results, "freqdep", BOGIE, (20.0, 45.0)) < peak(results, "constant", BOGIE,
-                                                                 (20.0, 45.0))
-    assert peak(results, "freqdep", BOGIE, (45.0, 100.0)) > peak(results, "constant", BOGIE,
-                                                                  (45.0, 100.0))
+    assert peak(results, "freqdep", BOGIE, (20.0, 45.0)) < peak(
+        results, "constant", BOGIE, (20.0, 45.0)
+    )
+    assert peak(results, "freqdep", BOGIE, (45.0, 100.0)) > peak(
+        results, "constant", BOGIE, (45.0, 100.0)
+    )
     assert peak(results, "freqdep", BOGIE, (0.5, 20.0)) == pytest.approx(
-        peak(results, "constant", BOGIE, (0.5, 20.0)), rel=1e-3)
+        peak(results, "constant", BOGIE, (0.5, 20.0)), rel=1e-3
+    )
 
 
 def test_colder_raises_wheelset_peak_and_frequency_monotonically(results):
@@ -108,7 +112,7 @@ def test_rail_above_600_hz_insensitive_to_temperature(results):
     # Fig. 16: "the difference is less than 5 %" above 600 Hz; Fig. 12: 1 % between the pad
     # laws in 100-1000 Hz (we allow the same 5 %).
     for c in TEMPERATURES[:2]:
-        assert rms_ratio(results, (c, "p20"), RAIL, (600.0, 1000.0)) == pytest.approx(1.0,
-                                                                                    abs=0.05)
+        assert rms_ratio(results, (c, "p20"), RAIL, (600.0, 1000.0)) == pytest.approx(1.0, abs=0.05)
     assert rms_ratio(results, ("freqdep", "constant"), RAIL, (100.0, 1000.0)) == pytest.approx(
-        1.0, abs=0.05)
+        1.0, abs=0.05
+    )

@@ -7,8 +7,7 @@ from railvib.pads import pad_from_dict
 from railvib.presets import load_preset
 
 BASE = "wang2017_metro"
-FREQDEP = ("wang2017_freqdep_20c", "wang2017_temp_m30c", "wang2017_temp_m10c",
-           "wang2017_temp_p20c")
+FREQDEP = ("wang2017_freqdep_20c", "wang2017_temp_m30c", "wang2017_temp_m10c", "wang2017_temp_p20c")
 
 
 @pytest.mark.parametrize("name", FREQDEP)
@@ -43,7 +42,13 @@ def test_temperature_series_colder_is_stiffer():
     # Section 3.2.3 values 31.0 / 45.2 / 70.8 kN/mm, paired physically: colder is stiffer.
     k0 = {n: load_preset_case(n).track.pad["k0_n_per_m"] for n in FREQDEP[1:]}
     temps = {n: load_preset_case(n).track.pad_temperature_c for n in FREQDEP[1:]}
-    assert temps == {"wang2017_temp_m30c": -30.0, "wang2017_temp_m10c": -10.0,
-                     "wang2017_temp_p20c": 20.0}
-    assert k0 == {"wang2017_temp_m30c": 70.8e6, "wang2017_temp_m10c": 45.2e6,
-                  "wang2017_temp_p20c": 31.0e6}
+    assert temps == {
+        "wang2017_temp_m30c": -30.0,
+        "wang2017_temp_m10c": -10.0,
+        "wang2017_temp_p20c": 20.0,
+    }
+    assert k0 == {
+        "wang2017_temp_m30c": 70.8e6,
+        "wang2017_temp_m10c": 45.2e6,
+        "wang2017_temp_p20c": 31.0e6,
+    }

@@ -40,8 +40,21 @@ def test_table_has_every_paper_number(outdir):
     for n in PAPER_NUMBERS:
         assert n.id in md
     # the numbers the issue names explicitly
-    for stated in ("8.82", "47.9", "13.5", "57.1", "63.4", "73.4", "10 Hz", "840 Hz", "88.5",
-                   "56.1", "4.51e-3", "3.3 times", "20.6 Hz"):
+    for stated in (
+        "8.82",
+        "47.9",
+        "13.5",
+        "57.1",
+        "63.4",
+        "73.4",
+        "10 Hz",
+        "840 Hz",
+        "88.5",
+        "56.1",
+        "4.51e-3",
+        "3.3 times",
+        "20.6 Hz",
+    ):
         assert stated in md, stated
 
 

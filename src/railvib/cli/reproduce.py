@@ -11,8 +11,13 @@ __all__ = ["reproduce"]
 
 @click.command(short_help="The paper's study: Figs. 9-16, its numbers beside ours, HTML report.")
 @click.option(
-    "-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
-    default=Path("railvib-reproduce"), show_default=True, help="output folder",
+    "-o",
+    "--output",
+    "outdir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("railvib-reproduce"),
+    show_default=True,
+    help="output folder",
 )
 @click.option("--quiet", is_flag=True, help="no progress bar, no summary")
 def reproduce(outdir: Path, quiet: bool) -> None:
@@ -32,8 +37,13 @@ def reproduce(outdir: Path, quiet: bool) -> None:
 
     console = Console(stderr=True)
     with Progress(
-        TextColumn("[bold]reproduce[/]"), BarColumn(), TextColumn("{task.description}"),
-        TimeElapsedColumn(), console=console, disable=quiet, transient=False,
+        TextColumn("[bold]reproduce[/]"),
+        BarColumn(),
+        TextColumn("{task.description}"),
+        TimeElapsedColumn(),
+        console=console,
+        disable=quiet,
+        transient=False,
     ) as bar:
         task = bar.add_task("running the cases", total=n_steps())
         out = run_study(outdir, progress=lambda msg: bar.update(task, advance=1, description=msg))

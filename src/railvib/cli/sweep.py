@@ -37,17 +37,35 @@ def sweep() -> None:
 
 @sweep.command("run")
 @click.argument("sweep_file", type=click.Path(dir_okay=False, path_type=Path))
-@click.option("-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
-              default=None, help="output folder [default: <SWEEP_FILE stem>.sweep]")
-@click.option("-j", "--workers", type=click.IntRange(min=1), default=None,
-              help="local worker processes [default: all cores]")
-@click.option("--scheduler", metavar="ADDRESS", default=None,
-              help="Dask distributed scheduler, e.g. tcp://10.0.0.1:8786")
+@click.option(
+    "-o",
+    "--output",
+    "outdir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    help="output folder [default: <SWEEP_FILE stem>.sweep]",
+)
+@click.option(
+    "-j",
+    "--workers",
+    type=click.IntRange(min=1),
+    default=None,
+    help="local worker processes [default: all cores]",
+)
+@click.option(
+    "--scheduler",
+    metavar="ADDRESS",
+    default=None,
+    help="Dask distributed scheduler, e.g. tcp://10.0.0.1:8786",
+)
 @click.option("--plot", "make_plots", is_flag=True, help="draw summary plots into OUT/plots")
 @click.option("--netcdf", "netcdf", is_flag=True, help="also write OUT/sweep.nc")
 @click.option("--csv", "csv", is_flag=True, help="also write the summary as OUT/summary.csv")
-@click.option("--overwrite", is_flag=True,
-              help="discard finished chunks of a DIFFERENT sweep in OUT instead of refusing")
+@click.option(
+    "--overwrite",
+    is_flag=True,
+    help="discard finished chunks of a DIFFERENT sweep in OUT instead of refusing",
+)
 @click.option("--no-progress", is_flag=True, help="no progress bar")
 def run_command(
     sweep_file: Path,
@@ -73,11 +91,20 @@ def run_command(
         err=True,
     )
     try:
-        ds = run_sweep(spec, out, workers=workers, scheduler=scheduler,
-                       progress=not no_progress, overwrite=overwrite)
+        ds = run_sweep(
+            spec,
+            out,
+            workers=workers,
+            scheduler=scheduler,
+            progress=not no_progress,
+            overwrite=overwrite,
+        )
     except KeyboardInterrupt:
-        click.echo(f"\ninterrupted; finished chunks are kept in {out}/chunks - rerun the same "
-                   "command to resume", err=True)
+        click.echo(
+            f"\ninterrupted; finished chunks are kept in {out}/chunks - rerun the same "
+            "command to resume",
+            err=True,
+        )
         raise
     assert ds is not None
     _write_extras(ds, out, netcdf=netcdf, csv=csv, plots=make_plots)
@@ -100,15 +127,32 @@ def _write_extras(ds: Any, out: Path, *, netcdf: bool, csv: bool, plots: bool) -
 
 @click.command("plot")
 @click.argument("result", type=click.Path(exists=True, path_type=Path))
-@click.option("-v", "--variable", "variables", multiple=True,
-              default=("peak", "dominant_frequency"), show_default=True,
-              help="summary variable(s): peak, dominant_frequency, rms, rms_<lo>_<hi>_hz")
-@click.option("-r", "--response", "responses", multiple=True,
-              help="response label(s) [default: car body, wheelset 1, rail at wheel 1]")
+@click.option(
+    "-v",
+    "--variable",
+    "variables",
+    multiple=True,
+    default=("peak", "dominant_frequency"),
+    show_default=True,
+    help="summary variable(s): peak, dominant_frequency, rms, rms_<lo>_<hi>_hz",
+)
+@click.option(
+    "-r",
+    "--response",
+    "responses",
+    multiple=True,
+    help="response label(s) [default: car body, wheelset 1, rail at wheel 1]",
+)
 @click.option("--x", "x", default=None, help="sweep dimension on the horizontal axis")
 @click.option("--y", "y", default=None, help="sweep dimension for a heat map")
-@click.option("-o", "--output", "outdir", type=click.Path(file_okay=False, path_type=Path),
-              default=None, help="folder for the PNGs [default: RESULT/plots or next to it]")
+@click.option(
+    "-o",
+    "--output",
+    "outdir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    help="folder for the PNGs [default: RESULT/plots or next to it]",
+)
 def plot(
     result: Path,
     variables: tuple[str, ...],
@@ -123,7 +167,7 @@ def plot(
 
     ds = load_sweep_dataset(result)
     if outdir is None:
-        outdir = (result if result.is_dir() and result.suffix != ".zarr" else result.parent)
+        outdir = result if result.is_dir() and result.suffix != ".zarr" else result.parent
         outdir = outdir / "plots"
     outdir.mkdir(parents=True, exist_ok=True)
     labels = [str(r) for r in ds["response"].values]
@@ -140,10 +184,20 @@ sweep.add_command(plot)
 
 @sweep.command("export")
 @click.argument("result", type=click.Path(exists=True, path_type=Path))
-@click.option("--netcdf", "nc_path", type=click.Path(dir_okay=False, path_type=Path),
-              default=None, help="write the whole dataset to this netCDF file")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False, path_type=Path),
-              default=None, help="write the summary table to this CSV file")
+@click.option(
+    "--netcdf",
+    "nc_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="write the whole dataset to this netCDF file",
+)
+@click.option(
+    "--csv",
+    "csv_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="write the summary table to this CSV file",
+)
 def export(result: Path, nc_path: Path | None, csv_path: Path | None) -> None:
     """Export a sweep RESULT (folder or sweep.zarr) to netCDF and/or CSV."""
     from railvib.sweep import load_sweep_dataset, save_sweep_csv, save_sweep_netcdf

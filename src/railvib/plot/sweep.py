@@ -39,9 +39,7 @@ def sweep_dims(ds: xr.Dataset) -> list[str]:
 
 def _axis_values(ds: xr.Dataset, dim: str) -> tuple[np.ndarray, str]:
     """Values and label of a sweep dimension (its first coordinate along it)."""
-    names = [dim] if dim in ds.coords else [
-        n for n, c in ds.coords.items() if c.dims == (dim,)
-    ]
+    names = [dim] if dim in ds.coords else [n for n, c in ds.coords.items() if c.dims == (dim,)]
     if not names:
         return np.arange(ds.sizes[dim]), dim
     c = ds.coords[names[0]]
@@ -112,8 +110,10 @@ def plot_sweep(
     unit = da.attrs.get("units", "")
     long_name = da.attrs.get("long_name", variable)
     xv, xlabel = _axis_values(ds, x)
-    fixed = ", ".join(f"{_axis_values(ds, d)[1].split(' [')[0]}={_axis_values(ds, d)[0][i]}"
-                      for d, i in pick.items())
+    fixed = ", ".join(
+        f"{_axis_values(ds, d)[1].split(' [')[0]}={_axis_values(ds, d)[0][i]}"
+        for d, i in pick.items()
+    )
     if y is None:
         for r in responses:
             ax.plot(xv, da.sel(response=r).transpose(x).values, marker="o", ms=3, label=r)
@@ -127,7 +127,8 @@ def plot_sweep(
         z = da.sel(response=responses[0]).transpose(y, x).values
         yv, ylabel = _axis_values(ds, y)
         numeric = np.issubdtype(np.asarray(xv).dtype, np.number) and np.issubdtype(
-            np.asarray(yv).dtype, np.number)
+            np.asarray(yv).dtype, np.number
+        )
         norm = LogNorm() if variable != "dominant_frequency" and np.all(z > 0) else None
         if numeric:
             mesh = ax.pcolormesh(xv, yv, z, shading="nearest", norm=norm)

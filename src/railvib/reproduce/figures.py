@@ -35,8 +35,15 @@ def _draw_panel(
     comparison = next(c for c in COMPARISONS if c.key == spec.comparison)
     for key in comparison.cases:
         case = _CASES[key]
-        plot_psd(results[key], [spec.response], ax=ax, xlim=xlim, label=case.label,
-                 color=case.color, lw=0.9)
+        plot_psd(
+            results[key],
+            [spec.response],
+            ax=ax,
+            xlim=xlim,
+            label=case.label,
+            color=case.color,
+            lw=0.9,
+        )
     for mark in spec.marks:
         band = (max(mark.band[0], xlim[0]), min(mark.band[1], xlim[1]))
         if band[0] >= band[1]:
@@ -46,8 +53,9 @@ def _draw_panel(
             v = peak(results, key, spec.response, band)
             ax.plot(f, v, "o", mfc="none", mec=_CASES[key].color, ms=7)
             if key == comparison.cases[0]:
-                ax.annotate(mark.label, (f, v), textcoords="offset points", xytext=(5, 6),
-                            fontsize="small")
+                ax.annotate(
+                    mark.label, (f, v), textcoords="offset points", xytext=(5, 6), fontsize="small"
+                )
     shown = [p for p in spec.paper_points if xlim[0] <= p.frequency_hz <= xlim[1]]
     for p in shown:
         ax.plot(p.frequency_hz, p.psd, "x", color=_CASES[p.case].color, ms=8, mew=2)
@@ -104,4 +112,3 @@ def save_figure(
     finally:
         plt.close(fig)
     return path
-

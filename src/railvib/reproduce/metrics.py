@@ -158,9 +158,7 @@ def envelope_peak_frequency(results: Results, case: str, response: str, band: Ba
     return float(f[int(np.argmax(trend))])
 
 
-def headline_ratio(
-    results: Results, reference: str, cases: Sequence[str], response: str
-) -> float:
+def headline_ratio(results: Results, reference: str, cases: Sequence[str], response: str) -> float:
     """Largest whole-grid peak among `cases` divided by the `reference` case's peak."""
     whole = _whole(results[reference])
     return max(peak(results, c, response, whole) for c in cases) / peak(
@@ -168,9 +166,7 @@ def headline_ratio(
     )
 
 
-def headline_shift(
-    results: Results, reference: str, cases: Sequence[str], response: str
-) -> float:
+def headline_shift(results: Results, reference: str, cases: Sequence[str], response: str) -> float:
     """Largest whole-grid dominant frequency among `cases` minus the `reference`'s, Hz."""
     whole = _whole(results[reference])
     return max(peak_frequency(results, c, response, whole) for c in cases) - peak_frequency(

@@ -61,18 +61,38 @@ def _cell(value: object) -> str:
 
 
 def _table_html(table: pd.DataFrame) -> str:
-    cols = ["id", "source", "quantity", "unit", "paper_text", "ours", "rel_diff_percent",
-            "claim_holds", "reading", "note"]
-    heads = ["id", "source", "quantity", "unit", "paper", "ours", "ours vs paper (%)",
-             "finding holds", "how we read it", "why ours differs"]
+    cols = [
+        "id",
+        "source",
+        "quantity",
+        "unit",
+        "paper_text",
+        "ours",
+        "rel_diff_percent",
+        "claim_holds",
+        "reading",
+        "note",
+    ]
+    heads = [
+        "id",
+        "source",
+        "quantity",
+        "unit",
+        "paper",
+        "ours",
+        "ours vs paper (%)",
+        "finding holds",
+        "how we read it",
+        "why ours differs",
+    ]
     rows = []
     for r in table.itertuples():
         rel = "" if math.isnan(r.rel_diff_percent) else f"{r.rel_diff_percent:+.1f}"
         cells = [_cell(getattr(r, c)) for c in cols]
         cells[cols.index("rel_diff_percent")] = rel
         tds = "".join(
-            f'<td class="num">{c}</td>' if name in ("ours", "rel_diff_percent") else
-            f"<td>{c}</td>" for name, c in zip(cols, cells, strict=True)
+            f'<td class="num">{c}</td>' if name in ("ours", "rel_diff_percent") else f"<td>{c}</td>"
+            for name, c in zip(cols, cells, strict=True)
         )
         cls = ' class="no"' if r.claim_holds == "no" else ""
         rows.append(f"<tr{cls}>{tds}</tr>")
@@ -90,8 +110,10 @@ def _cases_html(cases: Mapping[str, Case]) -> str:
             f"<td>{html.escape(c.label)}</td><td>{case.track.pad_temperature_c}</td>"
             f"<td>{html.escape(pad)}</td></tr>"
         )
-    head = ("<tr><th>case</th><th>preset</th><th>legend</th><th>pad temperature (&deg;C)</th>"
-            "<th>railpad (SI)</th></tr>")
+    head = (
+        "<tr><th>case</th><th>preset</th><th>legend</th><th>pad temperature (&deg;C)</th>"
+        "<th>railpad (SI)</th></tr>"
+    )
     base = cases[CASES[0].key]
     return (
         f"<table>{head}{''.join(rows)}</table>"
@@ -127,7 +149,7 @@ def render_report(
     figs = "".join(f"<h3>Fig. {spec.number}</h3>{_img(path)}" for spec, path in figures)
     info = "".join(f"<li>{html.escape(k)}: {html.escape(v)}</li>" for k, v in meta.items())
     return (
-        "<!DOCTYPE html><html><head><meta charset=\"utf-8\">"
+        '<!DOCTYPE html><html><head><meta charset="utf-8">'
         "<title>railvib: reproduction of Wang et al. 2017</title>"
         f"<style>{_CSS}</style></head><body>"
         "<h1>railvib reproduce: Wang et al. 2017, Figs. 9-16</h1>"
@@ -150,4 +172,3 @@ def write_report(
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return path
-

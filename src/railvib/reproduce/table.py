@@ -17,8 +17,18 @@ __all__ = ["COLUMNS", "compare", "format_value", "to_markdown", "write_table"]
 
 #: columns of the comparison table, in order
 COLUMNS = (
-    "id", "source", "quantity", "unit", "paper", "paper_text", "ours",
-    "rel_diff_percent", "claim", "claim_holds", "reading", "note",
+    "id",
+    "source",
+    "quantity",
+    "unit",
+    "paper",
+    "paper_text",
+    "ours",
+    "rel_diff_percent",
+    "claim",
+    "claim_holds",
+    "reading",
+    "note",
 )
 
 _OPS = {"<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge}
@@ -76,16 +86,29 @@ def format_value(value: float) -> str:
 
 
 def _display(table: pd.DataFrame) -> pd.DataFrame:
-    out = table[["id", "source", "quantity", "unit", "paper_text", "ours",
-                 "rel_diff_percent", "claim_holds"]].copy()
+    out = table[
+        [
+            "id",
+            "source",
+            "quantity",
+            "unit",
+            "paper_text",
+            "ours",
+            "rel_diff_percent",
+            "claim_holds",
+        ]
+    ].copy()
     out["ours"] = table["ours"].map(format_value)
     out["rel_diff_percent"] = table["rel_diff_percent"].map(
         lambda v: "" if math.isnan(v) else f"{v:+.1f}"
     )
-    return out.rename(columns={
-        "paper_text": "paper", "rel_diff_percent": "ours vs paper (%)",
-        "claim_holds": "finding holds",
-    })
+    return out.rename(
+        columns={
+            "paper_text": "paper",
+            "rel_diff_percent": "ours vs paper (%)",
+            "claim_holds": "finding holds",
+        }
+    )
 
 
 def to_markdown(table: pd.DataFrame) -> str:

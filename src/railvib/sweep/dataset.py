@@ -16,8 +16,14 @@ from railvib.results.dataset import PSD_CONVENTION, atomic_path, save_netcdf
 from railvib.sweep.batch import case_labels, summary_names
 from railvib.sweep.layout import SweepLayout
 
-__all__ = ["field_unit", "load_sweep_dataset", "save_sweep_csv", "save_sweep_netcdf",
-           "summary_variables", "sweep_dataset"]
+__all__ = [
+    "field_unit",
+    "load_sweep_dataset",
+    "save_sweep_csv",
+    "save_sweep_netcdf",
+    "summary_variables",
+    "sweep_dataset",
+]
 
 _PER_FREQ_ATTRS = {
     "psd_acceleration": (units.ACCELERATION_PSD, "acceleration PSD"),
@@ -26,8 +32,13 @@ _PER_FREQ_ATTRS = {
     "irregularity_psd": (units.DISPLACEMENT_PSD, "irregularity PSD applied"),
 }
 _SUFFIX_UNITS = (
-    ("_n_per_m", "N/m"), ("_ns_per_m", "N s/m"), ("_kmh", "km/h"), ("_c", "degC"),
-    ("_hz", "Hz"), ("_s", "s"), ("_m", "m"),
+    ("_n_per_m", "N/m"),
+    ("_ns_per_m", "N s/m"),
+    ("_kmh", "km/h"),
+    ("_c", "degC"),
+    ("_hz", "Hz"),
+    ("_s", "s"),
+    ("_m", "m"),
 )
 
 
@@ -90,15 +101,23 @@ def sweep_dataset(
     }
     for ax in spec["axes"]:
         values = ax["coords"]
-        attrs = {"long_name": ax["field"], "units": field_unit(ax["field"]),
-                 "case_field": ax["field"]}
+        attrs = {
+            "long_name": ax["field"],
+            "units": field_unit(ax["field"]),
+            "case_field": ax["field"],
+        }
         coords[ax["dim"]] = (ax["group"], _coord_array(values), attrs)
     data: dict[str, Any] = {}
     sweep_dims = tuple(dims)
     for name in spec["variables"]:
         unit, long_name = _PER_FREQ_ATTRS[name]
-        extra = () if name == "irregularity_psd" else ("wheel",) if name == "psd_force" else (
-            "response",)
+        extra = (
+            ()
+            if name == "irregularity_psd"
+            else ("wheel",)
+            if name == "psd_force"
+            else ("response",)
+        )
         da = xr.DataArray(arrays[name], dims=(*sweep_dims, "frequency", *extra))
         data[name] = da.transpose("frequency", *extra, *sweep_dims).assign_attrs(
             units=unit, long_name=long_name

@@ -158,8 +158,9 @@ def _dask(spec: dict[str, Any], todo: list[int], scheduler: Any) -> Iterator[Chu
     try:
         spec_future = client.scatter(spec, broadcast=True)
         futures = [
-            client.submit(_compute, spec_future, cid, key=f"railvib-chunk-{cid}-{id(spec)}",
-                          pure=False)
+            client.submit(
+                _compute, spec_future, cid, key=f"railvib-chunk-{cid}-{id(spec)}", pure=False
+            )
             for cid in todo
         ]
         try:

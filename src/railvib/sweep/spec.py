@@ -279,13 +279,15 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> list
         n = sizes.setdefault(entry["group"], len(entry["values"]))
         if n != len(entry["values"]):
             raise CaseError(
-                f"axes.{entry['field']}", len(entry["values"]),
+                f"axes.{entry['field']}",
+                len(entry["values"]),
                 f"zipped axes of group {entry['group']!r} need equal lengths ({n})",
             )
     for entry in axes:
         if entry["dim"] in sizes and entry["dim"] != entry["group"]:
             raise CaseError(
-                f"axes.{entry['field']}", entry["dim"],
+                f"axes.{entry['field']}",
+                entry["dim"],
                 "an axis name distinct from other groups' zip labels",
             )
     return axes

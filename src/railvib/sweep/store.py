@@ -269,8 +269,7 @@ class ChunkStore:
             block = dict(zip(self.layout.dims, self.layout.block, strict=True))
             for name, da in ds.data_vars.items():
                 encoding[name] = {"chunks": tuple(block.get(str(d), da.sizes[d]) for d in da.dims)}
-            ds.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True,
-                       encoding=encoding)
+            ds.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True, encoding=encoding)
             if target.exists():
                 shutil.rmtree(target)
             os.replace(tmp / "store", target)

@@ -33,4 +33,3 @@ def small_sweep(**over):
     }
     d.update(over)
     return d
-

@@ -57,18 +57,27 @@ def _case_at(spec, index):
             {"field": "vehicle.wheelset_mass", "values": [1200.0, 1420.0]},
         ],
         [  # whole pad tables as values, zipped with speed
-            {"field": "track.pad", "labels": ["stiff", "soft"], "zip": "pad", "values": [
-                {"model": "spring_damper", "stiffness_n_per_m": 1.2e8, "damping_ns_per_m": 6e4},
-                {"model": "hysteretic", "stiffness_n_per_m": 2.0e7, "loss_factor": 0.25},
-            ]},
+            {
+                "field": "track.pad",
+                "labels": ["stiff", "soft"],
+                "zip": "pad",
+                "values": [
+                    {"model": "spring_damper", "stiffness_n_per_m": 1.2e8, "damping_ns_per_m": 6e4},
+                    {"model": "hysteretic", "stiffness_n_per_m": 2.0e7, "loss_factor": 0.25},
+                ],
+            },
             {"field": "speed_kmh", "values": [60.0, 120.0], "zip": "pad"},
         ],
     ],
 )
 def test_chunk_equals_railvib_run_case_by_case(axes):
-    spec = sweep_from_dict(small_sweep(axes=axes, chunk_size=100,
-                                       variables=["psd_acceleration", "psd_force",
-                                                  "irregularity_psd"]))
+    spec = sweep_from_dict(
+        small_sweep(
+            axes=axes,
+            chunk_size=100,
+            variables=["psd_acceleration", "psd_force", "irregularity_psd"],
+        )
+    )
     lay = SweepLayout(spec)
     assert lay.n_chunks == 1
     out = compute_chunk(spec, 0)
@@ -81,15 +90,21 @@ def test_chunk_equals_railvib_run_case_by_case(axes):
         np.testing.assert_array_equal(out["irregularity_psd"][i], ds.irregularity_psd.values)
         ref = summary(ds, bands=[tuple(b) for b in bands])
         for name in ref.data_vars:
-            np.testing.assert_allclose(out[f"summary/{name}"][i], ref[name].values, rtol=RTOL,
-                                       atol=0, err_msg=name)
+            np.testing.assert_allclose(
+                out[f"summary/{name}"][i], ref[name].values, rtol=RTOL, atol=0, err_msg=name
+            )
 
 
 def test_layout_covers_every_case_once_and_fills_cheap_axes_first():
-    spec = sweep_from_dict(small_sweep(chunk_size=5, axes=[
-        {"field": "speed_kmh", "start": 40.0, "stop": 160.0, "num": 7},
-        {"field": "track.pad_temperature_c", "values": [-30.0, 0.0, 30.0]},
-    ]))
+    spec = sweep_from_dict(
+        small_sweep(
+            chunk_size=5,
+            axes=[
+                {"field": "speed_kmh", "start": 40.0, "stop": 160.0, "num": 7},
+                {"field": "track.pad_temperature_c", "values": [-30.0, 0.0, 30.0]},
+            ],
+        )
+    )
     lay = SweepLayout(spec)
     assert lay.block == (5, 1)  # chunks run along speed, which shares the track
     seen = np.zeros(lay.shape, dtype=int)

@@ -60,11 +60,39 @@ def test_plot_and_export_commands(tmp_path, capsys):
     out = tmp_path / "out"
     f = _write(tmp_path, small_sweep())
     assert main(["sweep", str(f), "-o", str(out), "-j", "1", "--no-progress"]) == 0
-    assert main(["sweep", "plot", str(out), "-r", "rail@wheel2", "-v", "rms",
-                 "--x", "speed_kmh", "-o", str(tmp_path / "p")]) == 0
+    assert (
+        main(
+            [
+                "sweep",
+                "plot",
+                str(out),
+                "-r",
+                "rail@wheel2",
+                "-v",
+                "rms",
+                "--x",
+                "speed_kmh",
+                "-o",
+                str(tmp_path / "p"),
+            ]
+        )
+        == 0
+    )
     assert (tmp_path / "p" / "sweep_rms_rail_at_wheel2.png").stat().st_size > 0
-    assert main(["sweep", "export", str(out), "--csv", str(tmp_path / "t.csv"),
-                 "--netcdf", str(tmp_path / "t.nc")]) == 0
+    assert (
+        main(
+            [
+                "sweep",
+                "export",
+                str(out),
+                "--csv",
+                str(tmp_path / "t.csv"),
+                "--netcdf",
+                str(tmp_path / "t.nc"),
+            ]
+        )
+        == 0
+    )
     assert (tmp_path / "t.csv").exists()
     assert (tmp_path / "t.nc").exists()
 
@@ -74,8 +102,14 @@ def test_plot_sweep_lines_and_heatmap(tmp_path):
     f = _write(tmp_path, small_sweep())
     assert main(["sweep", str(f), "-o", str(out), "-j", "1", "--no-progress"]) == 0
     ds = load_sweep_dataset(out)
-    ax = plot_sweep(ds, "peak", ["wheelset1.bounce", "wheelset4.bounce"], kind="lines",
-                    x="speed_kmh", sel={"track.pad_temperature_c": 2})
+    ax = plot_sweep(
+        ds,
+        "peak",
+        ["wheelset1.bounce", "wheelset4.bounce"],
+        kind="lines",
+        x="speed_kmh",
+        sel={"track.pad_temperature_c": 2},
+    )
     assert len(ax.lines) == 2
     assert "track.pad_temperature_c=30.0" in ax.get_title()
     ax = plot_sweep(ds, "dominant_frequency", "wheelset1.bounce")

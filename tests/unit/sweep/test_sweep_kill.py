@@ -15,8 +15,7 @@ from railvib.sweep import ChunkStore, load_sweep, load_sweep_dataset, run_sweep
 SWEEP = {
     "title": "kill test",
     "chunk_size": 1,
-    "case": {**BASE_CASE, "frequency": {"spacing": "log", "f_min": 0.5, "f_max": 1000.0,
-                                        "n": 200}},
+    "case": {**BASE_CASE, "frequency": {"spacing": "log", "f_min": 0.5, "f_max": 1000.0, "n": 200}},
     "axes": [
         {"field": "track.pad_temperature_c", "start": -40.0, "stop": 40.0, "num": 16},
         {"field": "speed_kmh", "values": [60.0, 120.0]},
@@ -25,8 +24,18 @@ SWEEP = {
 
 
 def _cli(sweep_file, out):
-    return [sys.executable, "-m", "railvib.cli.main", "sweep", str(sweep_file), "-o", str(out),
-            "-j", "2", "--no-progress"]
+    return [
+        sys.executable,
+        "-m",
+        "railvib.cli.main",
+        "sweep",
+        str(sweep_file),
+        "-o",
+        str(out),
+        "-j",
+        "2",
+        "--no-progress",
+    ]
 
 
 def test_sigkill_midway_then_resume_equals_uninterrupted(tmp_path):
@@ -36,8 +45,12 @@ def test_sigkill_midway_then_resume_equals_uninterrupted(tmp_path):
     spec = load_sweep(sweep_file)
     store = ChunkStore(out, spec)
     n_chunks = store.layout.n_chunks
-    proc = subprocess.Popen(_cli(sweep_file, out), start_new_session=True,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        _cli(sweep_file, out),
+        start_new_session=True,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
     try:
         deadline = time.monotonic() + 60
         while time.monotonic() < deadline:

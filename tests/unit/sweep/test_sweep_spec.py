@@ -16,8 +16,13 @@ def test_ranges_values_and_log_ranges_resolve():
             axes=[
                 {"field": "speed_kmh", "start": 40.0, "stop": 160.0, "step": 40.0},
                 {"field": "track.pad_temperature_c", "start": -40.0, "stop": 40.0, "num": 3},
-                {"field": "contact.stiffness", "start": 1e8, "stop": 1e10, "num": 3,
-                 "spacing": "log"},
+                {
+                    "field": "contact.stiffness",
+                    "start": 1e8,
+                    "stop": 1e10,
+                    "num": 3,
+                    "spacing": "log",
+                },
                 {"field": "rail_model", "values": ["single_rail", "rail_pair"]},
             ]
         )
@@ -44,8 +49,13 @@ def test_zip_groups_share_a_dimension():
     lay = SweepLayout(spec)
     assert lay.dims == ("climate", "contact.leading_wheel_position")
     assert lay.shape == (2, 3)
-    whole = sweep_from_dict(small_sweep(mode="zip", axes=small_sweep()["axes"][:1] + [
-        {"field": "speed_kmh", "values": [40.0, 80.0, 120.0]}]))
+    whole = sweep_from_dict(
+        small_sweep(
+            mode="zip",
+            axes=small_sweep()["axes"][:1]
+            + [{"field": "speed_kmh", "values": [40.0, 80.0, 120.0]}],
+        )
+    )
     assert SweepLayout(whole).shape == (3,)
 
 
@@ -53,21 +63,30 @@ def test_zip_groups_share_a_dimension():
     ("axes", "field", "text"),
     [
         ([{"field": "speed_kmh", "values": [80.0, -5.0]}], "speed_kmh", "must be > 0"),
-        ([{"field": "vehicle.carbody_mas", "values": [1.0]}], "vehicle.carbody_mas",
-         "unknown key"),
+        ([{"field": "vehicle.carbody_mas", "values": [1.0]}], "vehicle.carbody_mas", "unknown key"),
         ([{"field": "frequency.f_max", "values": [100.0]}], "axes[0].field", "cannot vary"),
         ([{"field": "speed_kmh", "values": [1.0], "start": 1.0}], "axes[0].values", "one of"),
         ([{"field": "speed_kmh", "start": 1.0, "stop": 2.0}], "axes[0].num", "exactly one"),
-        ([{"field": "speed_kmh", "start": 0.0, "stop": 2.0, "num": 3, "spacing": "log"}],
-         "axes[0].start", "log"),
+        (
+            [{"field": "speed_kmh", "start": 0.0, "stop": 2.0, "num": 3, "spacing": "log"}],
+            "axes[0].start",
+            "log",
+        ),
         ([{"field": "speed_kmh", "values": [40.0, 40.0]}], "axes[0].values", "distinct"),
-        ([{"field": "speed_kmh", "values": [40.0], "zip": "a"},
-          {"field": "track.pad_temperature_c", "values": [1.0, 2.0], "zip": "a"}],
-         "axes.track.pad_temperature_c", "equal lengths"),
-        ([{"field": "track.pad", "values": [{"model": "hysteretic"}]}], "axes[0].labels",
-         "required"),
-        ([{"field": "speed_kmh", "values": [40.0], "colour": 1}], "axes[0].colour",
-         "unknown key"),
+        (
+            [
+                {"field": "speed_kmh", "values": [40.0], "zip": "a"},
+                {"field": "track.pad_temperature_c", "values": [1.0, 2.0], "zip": "a"},
+            ],
+            "axes.track.pad_temperature_c",
+            "equal lengths",
+        ),
+        (
+            [{"field": "track.pad", "values": [{"model": "hysteretic"}]}],
+            "axes[0].labels",
+            "required",
+        ),
+        ([{"field": "speed_kmh", "values": [40.0], "colour": 1}], "axes[0].colour", "unknown key"),
         ([], "axes", ""),
     ],
 )
@@ -79,10 +98,16 @@ def test_bad_sweeps_name_the_field(axes, field, text):
 
 
 def test_bad_value_inside_a_table_axis_names_the_pad_field():
-    bad = [{"field": "track.pad", "labels": ["soft", "broken"], "values": [
-        {"model": "spring_damper", "stiffness_n_per_m": 2e7},
-        {"model": "spring_damper", "stiffness_n_per_m": -1.0},
-    ]}]
+    bad = [
+        {
+            "field": "track.pad",
+            "labels": ["soft", "broken"],
+            "values": [
+                {"model": "spring_damper", "stiffness_n_per_m": 2e7},
+                {"model": "spring_damper", "stiffness_n_per_m": -1.0},
+            ],
+        }
+    ]
     with pytest.raises(CaseError) as err:
         sweep_from_dict(small_sweep(axes=bad))
     assert err.value.field.startswith("track.pad")

@@ -28,7 +28,11 @@ def spec():
 def test_dataset_layout_and_zarr_round_trip(spec, tmp_path):
     ds = run_sweep(spec, tmp_path / "out", workers=1, progress=False)
     assert ds.psd_acceleration.dims == (
-        "frequency", "response", "track.pad_temperature_c", "speed_kmh")
+        "frequency",
+        "response",
+        "track.pad_temperature_c",
+        "speed_kmh",
+    )
     assert ds.psd_force.dims[:2] == ("frequency", "wheel")
     assert ds.peak.dims == ("response", "track.pad_temperature_c", "speed_kmh")
     assert ds["speed_kmh"].attrs["units"] == "km/h"
@@ -80,10 +84,14 @@ def test_resume_recomputes_only_missing_chunks(spec, tmp_path, monkeypatch):
 def test_changed_sweep_is_refused_with_a_clear_message(spec, tmp_path):
     out = tmp_path / "out"
     run_sweep(spec, out, workers=1, progress=False)
-    changed = sweep_from_dict(small_sweep(axes=[
-        {"field": "track.pad_temperature_c", "values": [-30.0, 0.0, 35.0]},
-        {"field": "speed_kmh", "start": 40.0, "stop": 160.0, "num": 4},
-    ]))
+    changed = sweep_from_dict(
+        small_sweep(
+            axes=[
+                {"field": "track.pad_temperature_c", "values": [-30.0, 0.0, 35.0]},
+                {"field": "speed_kmh", "start": 40.0, "stop": 160.0, "num": 4},
+            ]
+        )
+    )
     with pytest.raises(SweepMismatchError, match=r"different sweep \(changed: axes\)"):
         run_sweep(changed, out, workers=1, progress=False)
     ds = run_sweep(changed, out, workers=1, progress=False, overwrite=True)

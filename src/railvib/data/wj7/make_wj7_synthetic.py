@@ -59,9 +59,7 @@ def residuals(x: np.ndarray) -> np.ndarray:
 def calibrate() -> TemperatureShifted:
     """Fit the master-curve parameters to the WJ-7 facts."""
     x0 = np.array([np.log10(25e6), 1.5, -9.0, 0.3])
-    sol = least_squares(
-        residuals, x0, bounds=([6, -1, -22, 0.05], [9, 4, -3, 1.0]), diff_step=1e-4
-    )
+    sol = least_squares(residuals, x0, bounds=([6, -1, -22, 0.05], [9, 4, -3, 1.0]), diff_step=1e-4)
     return pad(sol.x)
 
 
