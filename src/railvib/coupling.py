@@ -124,8 +124,11 @@ def coupled_response(
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128]]:
     """Solve the coupled system for any number of excitation vectors at once.
 
-    With ``Q = (R + I/k_H)^-1`` and the vehicle condensed on its wheels (``S``):
-    ``(S + Q) u_w = Q r``, ``u = R_v u_w``, ``P = Q (u_w - r)``, ``u_rail = R P``.
+    With ``Q = (R + I/k_H)^-1`` and the vehicle condensed on its wheels (``S``),
+    ``(S + Q) u_w = Q r``; multiplied by ``Q^-1`` this is
+    ``((R + I/k_H) S + I) u_w = r``, which needs no inverse. The wheels' equation
+    ``S u_w = -P`` gives the contact forces without the cancellation of
+    ``u_w - r`` at low frequency; then ``u = R_v u_w`` and ``u_rail = R P``.
 
     Parameters
     ----------
@@ -143,9 +146,8 @@ def coupled_response(
     vehicle_displacement, contact_force, rail_displacement : numpy.ndarray
         ``(n_freq, n_dof, n_rhs)``, ``(n_freq, n_wheel, n_rhs)``, ``(n_freq, n_wheel, n_rhs)``.
     """
-    n_wheel = receptance.shape[-1]
-    q = np.linalg.inv(receptance + np.eye(n_wheel) / contact_stiffness)
-    qr = q @ excitation
-    u_w = np.linalg.solve(vehicle.stiffness + q, qr)
-    force = q @ u_w - qr
+    eye = np.eye(receptance.shape[-1])
+    flexibility = receptance + eye / contact_stiffness
+    u_w = np.linalg.solve(flexibility @ vehicle.stiffness + eye, excitation)
+    force = -(vehicle.stiffness @ u_w)
     return vehicle.recovery @ u_w, force, receptance @ force

@@ -166,12 +166,17 @@ class Vehicle:
         n_b = n_dof - n_w
         omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
         m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
-        d = np.empty((int(omega.shape[0]), n_dof, n_dof), dtype=np.complex128)
-        d.real = k - omega**2 * m
-        d.imag = omega * c
-        x = np.linalg.solve(d[:, :n_b, :n_b], d[:, :n_b, n_b:])  # D_bb^-1 D_bw
-        stiffness = d[:, n_b:, n_b:] - d[:, n_b:, :n_b] @ x
-        recovery = np.empty((int(d.shape[0]), n_dof, n_w), dtype=np.complex128)
+
+        def block(rows: slice, cols: slice) -> NDArray[np.complex128]:
+            out = np.empty((int(omega.shape[0]),) + k[rows, cols].shape, dtype=np.complex128)
+            out.real = k[rows, cols] - omega**2 * m[rows, cols]
+            out.imag = omega * c[rows, cols]
+            return out
+
+        bodies, wheels = slice(0, n_b), slice(n_b, n_dof)
+        x = np.linalg.solve(block(bodies, bodies), block(bodies, wheels))  # D_bb^-1 D_bw
+        stiffness = block(wheels, wheels) - block(wheels, bodies) @ x
+        recovery = np.empty((int(omega.shape[0]), n_dof, n_w), dtype=np.complex128)
         recovery[:, order[:n_b], :] = -x
         recovery[:, order[n_b:], :] = np.eye(n_w)
         return WheelCondensation(
