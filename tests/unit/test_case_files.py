@@ -152,3 +152,18 @@ def test_presets_nest_and_cycles_are_refused(monkeypatch):
         CaseError, match=re.escape("preset = 'c': no cycle of presets (c -> d -> c)")
     ):
         presets.load_preset("c")
+
+
+def test_timoshenko_rail_from_case_file():
+    rail = {"shear_stiffness": 2.447e8, "rotary_inertia": 0.2525}
+    case = case_from_dict(_case(track={"rail": rail}))
+    track = railvib.build_system(case).track
+    assert track.rail.is_timoshenko
+    assert (track.rail.shear_stiffness, track.rail.rotary_inertia) == (2.447e8, 0.2525)
+    pair = railvib.build_system(case_from_dict(_case(rail_model="rail_pair", track={"rail": rail})))
+    assert pair.track.rail.shear_stiffness == 2 * 2.447e8
+    assert pair.track.rail.rotary_inertia == 2 * 0.2525
+    with pytest.raises(
+        CaseError, match=re.escape("track.rail.shear_stiffness = 0.0: must be > 0.0 (N)")
+    ):
+        case_from_dict(_case(track={"rail": {"shear_stiffness": 0.0}}))

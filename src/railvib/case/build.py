@@ -52,7 +52,13 @@ def build_track(case: Case) -> PeriodicTrack:
 
     n = _rail_multiplier(case)
     r = case.track.rail
-    rail = Rail(n * r.bending_stiffness, n * r.mass_per_length, r.loss_factor)
+    rail = Rail(
+        n * r.bending_stiffness,
+        n * r.mass_per_length,
+        r.loss_factor,
+        shear_stiffness=None if r.shear_stiffness is None else n * r.shear_stiffness,
+        rotary_inertia=n * r.rotary_inertia,
+    )
     pad = build_pad(case)
     if n != 1.0:
         pad = ScaledPad(pad, n)

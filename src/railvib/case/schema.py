@@ -70,6 +70,19 @@ class RailSection(_Section):
     bending_stiffness: float = quantity("N m^2", "bending stiffness EI of the rail beam")
     mass_per_length: float = quantity("kg/m", "mass per unit length of the rail beam")
     loss_factor: float = quantity("-", "rail loss factor eta_r (EI -> EI (1 + i eta_r))", ge=0.0)
+    shear_stiffness: float | None = Field(
+        None,
+        gt=0.0,
+        description="kappa G A; given, the rail is a Timoshenko beam (CHN60: 2.45e8), "
+        "omitted, an Euler-Bernoulli beam as in the paper",
+        json_schema_extra={"unit": "N"},
+    )
+    rotary_inertia: float = Field(
+        0.0,
+        ge=0.0,
+        description="rho I, rotary inertia per length of a Timoshenko rail (CHN60: 0.2525)",
+        json_schema_extra={"unit": "kg m"},
+    )
 
 
 class TrackSection(_Section):

@@ -25,7 +25,7 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["dynamic_stiffness", "field_transfer", "krylov_series"]
+__all__ = ["dynamic_stiffness", "field_transfer", "krylov_series", "timoshenko_transfer"]
 
 
 def _n_terms(beta4: NDArray[np.complex128], length: float) -> int:
@@ -144,3 +144,48 @@ def dynamic_stiffness(beta4: ArrayLike, length: float) -> NDArray[np.complex128]
         for j in range(4):
             k[..., i, j] = rows[i][j] / d
     return k
+
+
+def timoshenko_transfer(
+    beta4: ArrayLike, shear_flexibility: complex, rotary: ArrayLike, length: float
+) -> NDArray[np.complex128]:
+    """Field transfer matrix of a Timoshenko span, ``(n_freq, 4, 4)``.
+
+    State ``y = (w, psi, psi', v)`` with ``psi`` the cross-section rotation and
+    ``v = -S / EI`` (``S`` the shear force; ``v = w'''`` in the Euler limit), all
+    with lengths scaled by ``L0``. The first-order system ``y' = A y`` has
+
+    ``A = [[0, 1, 0, -eps], [0, 0, 1, 0], [0, -rho, 0, 1], [beta4, 0, 0, 0]]``,
+
+    ``eps = EI / (kappa G A L0^2)`` and ``rho = rho_I omega^2 L0^2 / EI``; ``tr A = 0``
+    so ``det exp(A L) = 1``. ``eps = rho = 0`` gives :func:`field_transfer`. The
+    matrix exponential is an entire function of the entries (no poles); it is
+    evaluated by :func:`scipy.linalg.expm`, stacked over frequency.
+
+    Parameters
+    ----------
+    beta4 : array_like of complex
+        ``m omega^2 L0^4 / EI*`` per frequency.
+    shear_flexibility : complex
+        ``eps = EI* / (kappa G A* L0^2)`` (dimensionless).
+    rotary : array_like of complex
+        ``rho = rho_I omega^2 L0^2 / EI*`` per frequency.
+    length : float
+        Dimensionless span length (signed).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex array ``(n_freq, 4, 4)``.
+    """
+    from scipy.linalg import expm
+
+    b4 = np.atleast_1d(np.asarray(beta4, dtype=complex))
+    a = np.zeros(b4.shape + (4, 4), dtype=complex)
+    a[..., 0, 1] = 1.0
+    a[..., 0, 3] = -shear_flexibility
+    a[..., 1, 2] = 1.0
+    a[..., 2, 1] = -np.asarray(rotary, dtype=complex)
+    a[..., 2, 3] = 1.0
+    a[..., 3, 0] = b4
+    return np.asarray(expm(a * length), dtype=np.complex128)

@@ -23,7 +23,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError, SolverWarning
 from railvib.pads.base import PadModel
-from railvib.track.beam import dynamic_stiffness, field_transfer, krylov_series
+from railvib.track.beam import (
+    dynamic_stiffness,
+    field_transfer,
+    krylov_series,
+    timoshenko_transfer,
+)
 
 __all__ = ["PeriodicTrack", "Rail", "TrackWaves"]
 
@@ -36,7 +41,7 @@ ENERGY_FLOW_TOLERANCE = 1e-6
 
 @dataclass(frozen=True)
 class Rail:
-    """Euler-Bernoulli rail.
+    """The rail beam: Euler-Bernoulli, or Timoshenko when a shear stiffness is given.
 
     Parameters
     ----------
@@ -45,12 +50,21 @@ class Rail:
     mass_per_length : float
         m in kg/m (> 0). CHN60, one rail: 60.64.
     loss_factor : float
-        Rail material loss factor eta_r (>= 0); EI becomes EI (1 + i eta_r).
+        Rail material loss factor eta_r (>= 0); EI (and kappa G A) become
+        EI (1 + i eta_r).
+    shear_stiffness : float, optional
+        kappa G A in N (> 0). Given: a Timoshenko beam (shear deformation and
+        rotary inertia); None: Euler-Bernoulli. CHN60: 0.4 x 7.9e10 x 7.745e-3 = 2.45e8.
+    rotary_inertia : float
+        rho I, rotary inertia per unit length in kg m (>= 0), used by the
+        Timoshenko beam. CHN60: 7850 x 3.217e-5 = 0.2525.
     """
 
     bending_stiffness: float
     mass_per_length: float
     loss_factor: float = 0.0
+    shear_stiffness: float | None = None
+    rotary_inertia: float = 0.0
 
     def __post_init__(self) -> None:
         for name, value, unit in (
@@ -61,6 +75,22 @@ class Rail:
                 raise CaseError(name, value, f"must be > 0 ({unit})")
         if not (np.isfinite(self.loss_factor) and self.loss_factor >= 0):
             raise CaseError("track.rail.loss_factor", self.loss_factor, "must be >= 0")
+        shear = self.shear_stiffness
+        if shear is not None and not (np.isfinite(shear) and shear > 0):
+            raise CaseError("track.rail.shear_stiffness", shear, "must be > 0 (N)")
+        if not (np.isfinite(self.rotary_inertia) and self.rotary_inertia >= 0):
+            raise CaseError("track.rail.rotary_inertia", self.rotary_inertia, "must be >= 0 (kg m)")
+        if self.rotary_inertia > 0 and shear is None:
+            raise CaseError(
+                "track.rail.rotary_inertia",
+                self.rotary_inertia,
+                "needs shear_stiffness too (a Timoshenko rail); leave it 0 for an Euler rail",
+            )
+
+    @property
+    def is_timoshenko(self) -> bool:
+        """True when the rail is a Timoshenko beam."""
+        return self.shear_stiffness is not None
 
     @property
     def complex_bending_stiffness(self) -> complex:
@@ -145,14 +175,30 @@ class PeriodicTrack:
             z * self.sleeper_spacing**3 / self.rail.complex_bending_stiffness, dtype=np.complex128
         )
 
+    def span_transfer(self, f: ArrayLike, length: float) -> NDArray[np.complex128]:
+        """Dimensionless transfer matrix of the rail over `length` bays, ``(n_freq, 4, 4)``.
+
+        State ``(w, d psi, d^2 psi', d^3 v)``: for an Euler rail ``psi = w'`` and
+        ``v = w'''``; for a Timoshenko rail see
+        :func:`~railvib.track.beam.timoshenko_transfer`.
+        """
+        f = _as_freq(f)
+        if self.rail.shear_stiffness is None:
+            return field_transfer(self._beta4(f), length)
+        d = self.sleeper_spacing
+        ei = self.rail.complex_bending_stiffness
+        kga = self.rail.shear_stiffness * (1.0 + 1j * self.rail.loss_factor)
+        rotary = self.rail.rotary_inertia * (2.0 * np.pi * f) ** 2 * d**2 / ei
+        return timoshenko_transfer(self._beta4(f), ei / (kga * d**2), rotary, length)
+
     def cell_transfer(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Dimensionless field transfer matrix of one bay, ``(n_freq, 4, 4)``.
 
-        Maps ``(w, d w', d^2 w'', d^3 w''')`` just right of sleeper n to the same
-        just right of sleeper n+1: beam over one span, then the pad's shear jump.
+        Maps the state just right of sleeper n to the same just right of sleeper
+        n+1: the rail over one span (:meth:`span_transfer`), then the pad's shear jump.
         """
         f = _as_freq(f)
-        t = field_transfer(self._beta4(f), 1.0)
+        t = self.span_transfer(f, 1.0)
         t[:, 3, :] -= self._pad_hat(f)[:, None] * t[:, 0, :]
         return t
 
@@ -228,13 +274,13 @@ class PeriodicTrack:
         # last column of B(-xi) is (s3, s2, s1, s0)(-xi)
         amps = np.empty((w.f.size, 4, x_load.size), dtype=complex)
         for xi_u in np.unique(xi):
-            rhs = np.stack(krylov_series(w.beta4, -xi_u)[::-1], axis=-1)
+            rhs = self._last_column(w, -xi_u)
             sol = np.einsum("fij,fj->fi", w._matching_inv, rhs)
             amps[:, :, xi == xi_u] = sol[:, :, None]
         # displacement of each wave at each observation point's local coordinate
         out = np.empty((w.f.size, x_obs.size, x_load.size), dtype=complex)
         for eta_u in np.unique(eta):
-            row = np.stack(krylov_series(w.beta4, eta_u), axis=-1)  # first row of B(eta)
+            row = self._first_row(w, eta_u)
             disp_r = np.einsum("fk,fkj->fj", row, w.right)
             disp_l = np.einsum("fk,fkj->fj", row, w.left)
             for i in np.flatnonzero(eta == eta_u):
@@ -246,6 +292,18 @@ class PeriodicTrack:
                         m = bay_load[j] - bay_obs[i]
                         out[:, i, j] = np.sum(amps[:, 2:, j] * w.mu**m * disp_l, axis=1)
         return out * w.scale
+
+    def _first_row(self, w: TrackWaves, length: float) -> NDArray[np.complex128]:
+        """Displacement row of the span transfer matrix over `length`, ``(n_freq, 4)``."""
+        if self.rail.is_timoshenko:
+            return self.span_transfer(w.f, length)[:, 0, :]
+        return np.stack(krylov_series(w.beta4, length), axis=-1)
+
+    def _last_column(self, w: TrackWaves, length: float) -> NDArray[np.complex128]:
+        """Shear-force column of the span transfer matrix over `length`, ``(n_freq, 4)``."""
+        if self.rail.is_timoshenko:
+            return self.span_transfer(w.f, length)[:, :, 3]
+        return np.stack(krylov_series(w.beta4, length)[::-1], axis=-1)
 
     def transfer_matrix(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Transfer matrix S of one bay in the paper's state ``(u, p)``, SI units.
@@ -262,9 +320,20 @@ class PeriodicTrack:
 
         Exact beam span plus the pad at the right end; SI units (N/m, N, N m).
         It has poles at the clamped-clamped frequencies of the span (3268 Hz for
-        0.6 m of CHN60); the solver uses the pole-free :meth:`cell_transfer`.
+        0.6 m of CHN60); the solver uses the pole-free :meth:`cell_transfer`. For
+        an Euler rail it is the closed-form span stiffness; for a Timoshenko rail it
+        is obtained from the transfer matrix (inverting paper Eq. 4).
         """
         f = _as_freq(f)
+        if self.rail.is_timoshenko:
+            s = self.transfer_matrix(f)
+            k_ab = np.linalg.inv(s[:, :2, 2:])
+            k_aa = -k_ab @ s[:, :2, :2]
+            k_bb = -s[:, 2:, 2:] @ k_ab
+            k_ba = -s[:, 2:, :2] - k_bb @ s[:, :2, :2]
+            return np.concatenate(
+                [np.concatenate([k_aa, k_ab], 2), np.concatenate([k_ba, k_bb], 2)], 1
+            )
         d = self.sleeper_spacing
         ei = self.rail.complex_bending_stiffness
         k = dynamic_stiffness(self._beta4(f), 1.0)
