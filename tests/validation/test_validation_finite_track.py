@@ -88,3 +88,11 @@ def test_time_domain_needs_viscous_pad():
     track = FiniteTrack(RAIL, Hysteretic(5e7, 0.2), 0.6, 0, 10)
     with pytest.raises(CaseError, match="spring_damper"):
         track.time_domain_matrices()
+
+
+def test_timoshenko_rail_is_refused_by_the_euler_reference():
+    from railvib.errors import CaseError
+
+    rail = Rail(6.62e6, 60.64, shear_stiffness=2.447e8)
+    with pytest.raises(CaseError, match="Euler-Bernoulli rail"):
+        FiniteTrack.around([0.3], rail, SpringDamper(5e7, 5e4), 0.6)

@@ -121,6 +121,12 @@ class FiniteTrack:
         d = self.sleeper_spacing
         if not (np.isfinite(d) and d > 0):
             raise CaseError("track.sleeper_spacing", d, "must be > 0 (m)")
+        if self.rail.is_timoshenko:
+            raise CaseError(
+                "track.rail.shear_stiffness",
+                self.rail.shear_stiffness,
+                "omitted: the finite-track validation model is an Euler-Bernoulli rail",
+            )
         if self.last_sleeper - self.first_sleeper < 1:
             raise CaseError("finite_track.last_sleeper", self.last_sleeper, "> first_sleeper")
         if int(self.elements_per_span) < 1:
