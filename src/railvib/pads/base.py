@@ -26,6 +26,11 @@ class PadModel(ABC):
     #: short name used in case files (``[track.pad] model = "..."``)
     model_name: str = ""
 
+    @property
+    def temperature_dependent(self) -> bool:
+        """Whether :meth:`stiffness` depends on its `temperature` argument."""
+        return False
+
     @abstractmethod
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """Complex dynamic stiffness ``K*(f, T)`` in N/m.

@@ -33,6 +33,11 @@ class ScaledPad(PadModel):
         if not (np.isfinite(self.factor) and self.factor > 0):
             raise CaseError("track.pad.factor", self.factor, "must be > 0")
 
+    @property
+    def temperature_dependent(self) -> bool:
+        """As the base pad."""
+        return self.base.temperature_dependent
+
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``factor * K*_base(f, T)`` in N/m."""
         return np.asarray(self.factor * self.base.stiffness(f, temperature), dtype=np.complex128)

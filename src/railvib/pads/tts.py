@@ -238,6 +238,11 @@ class TemperatureShifted(PadModel):
     expansion_coefficient_per_k: float = DEFAULT_EXPANSION_COEFFICIENT_PER_K
     model_name = "temperature_shifted"
 
+    @property
+    def temperature_dependent(self) -> bool:
+        """Always true: the stiffness is shifted to the given temperature."""
+        return True
+
     def __post_init__(self) -> None:
         if not isinstance(self.base, PadModel) or isinstance(self.base, TemperatureShifted):
             raise CaseError("track.pad.model", self.base, "a single (unshifted) pad model")

@@ -274,6 +274,7 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> list
         axes.append(
             {"field": ax.field, "dim": ax.dim, "group": group, "values": values, "coords": coords}
         )
+    _check_temperature_axis(base, [entry["field"] for entry in axes], base_dir)
     sizes: dict[str, int] = {}
     for entry in axes:
         n = sizes.setdefault(entry["group"], len(entry["values"]))
@@ -293,6 +294,25 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> list
     return axes
 
 
+def _check_temperature_axis(base: dict[str, Any], fields: list[str], base_dir: Path) -> None:
+    """Refuse a pad-temperature axis that cannot change anything (pad not temperature-shifted)."""
+    if TEMPERATURE_FIELD not in fields or any(
+        f == "track.pad" or f.startswith("track.pad.") for f in fields
+    ):
+        return
+    from railvib.case import build_pad
+
+    pad = build_pad(case_from_dict(base, base_dir=base_dir))
+    if not pad.temperature_dependent:
+        raise CaseError(
+            f"axes.{TEMPERATURE_FIELD}",
+            pad.model_name,
+            "a temperature-dependent pad: the base case's pad ignores temperature, so this "
+            "axis would change nothing; give [track.pad] a [track.pad.tts] table (e.g. from "
+            "'railvib pad fit') or sweep track.pad instead",
+        )
+
+
 def _check_value(base: dict[str, Any], field: str, value: Any, base_dir: Path, where: str) -> None:
     """Validate the base case with one axis value, so a bad value is named at load time."""
     override = nested_override(field, value)
@@ -302,6 +322,10 @@ def _check_value(base: dict[str, Any], field: str, value: Any, base_dir: Path, w
         raise CaseError(
             exc.field, exc.value, f"{exc.allowed} [sweep {where}, field {field}]"
         ) from None
+
+
+#: the case field holding the railpad temperature
+TEMPERATURE_FIELD = "track.pad_temperature_c"
 
 
 def _canonical(value: Any) -> str:

@@ -138,3 +138,16 @@ def test_base_file_plus_overrides(tmp_path):
     assert spec["base_case"]["track"]["pad"]["model"] == "fractional_zener"
     with pytest.raises(CaseError, match="readable"):
         load_sweep(tmp_path / "missing.toml")
+
+
+def test_temperature_axis_with_a_temperature_blind_pad_is_refused():
+    import re
+
+    spec = {
+        "case": {"preset": "wang2017_metro"},
+        "axes": [{"field": "track.pad_temperature_c", "values": [-30.0, 20.0]}],
+    }
+    with pytest.raises(
+        CaseError, match=re.escape("axes.track.pad_temperature_c = 'spring_damper'")
+    ):
+        sweep_from_dict(spec)
