@@ -12,15 +12,17 @@ import railvib.grid
 import railvib.solve
 import railvib.track.periodic
 
-README = Path(__file__).resolve().parents[2] / "README.md"
+ROOT = Path(__file__).resolve().parents[2]
+README = ROOT / "README.md"
 
 
-def test_readme_python_examples_run(tmp_path, monkeypatch):
+@pytest.mark.parametrize("doc", ["README.md", "docs/user-guide.md"])
+def test_python_examples_in_docs_run(doc, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    blocks = re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
-    assert blocks, "README has no python example"
+    blocks = re.findall(r"```python\n(.*?)```", (ROOT / doc).read_text(), flags=re.S)
+    assert blocks, f"{doc} has no python example"
     for block in blocks:
-        exec(compile(block, "README.md", "exec"), {})  # noqa: S102
+        exec(compile(block, doc, "exec"), {})  # noqa: S102
 
 
 def test_readme_opens_with_the_two_commands():
