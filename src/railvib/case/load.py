@@ -112,11 +112,22 @@ def _resolve_paths(data: dict[str, Any], base_dir: Path) -> None:
 
 
 def _check_models(case: Case) -> None:
-    """Build the pad and spectrum once so their own validation runs at load time."""
-    from railvib.case.build import build_pad, build_spectrum
+    """Build the pad and spectrum, and evaluate the pad on the case's grid, at load time.
 
-    build_pad(case)
+    So a pad that is not passive somewhere on the grid, or a temperature the pad's
+    WLF law cannot take, is reported as a case error before anything runs.
+    """
+    from railvib.case.build import build_grid, build_pad, build_spectrum
+
+    pad = build_pad(case)
     build_spectrum(case)
+    temperature = case.track.pad_temperature_c
+    try:
+        pad.check_passive(build_grid(case).f, temperature, field="track.pad")
+    except CaseError as exc:
+        if exc.field.startswith("track.pad") and exc.field != "track.pad_temperature_c":
+            raise
+        raise CaseError("track.pad_temperature_c", temperature, exc.allowed) from None
 
 
 def _case_error(exc: ValidationError) -> CaseError:

@@ -78,3 +78,14 @@ def test_tabulated_pad_interpolates_in_log_frequency_and_holds_ends():
 def test_tabulated_pad_rejections(table, message):
     with pytest.raises(CaseError, match=message):
         pad_from_dict({"model": "tabulated", **table})
+
+
+def test_case_temperature_outside_the_wlf_range_is_a_case_error():
+    # T0 - C2 = 20 - 111.6 = -91.6 degC for Tg = -40 degC re-referenced to 20 degC
+    with pytest.raises(CaseError, match=r"track\.pad_temperature_c = -100\.0: must be above"):
+        railvib.case_from_dict(
+            {
+                "preset": "wang2017_metro",
+                "track": {"pad": ZENER_TTS, "pad_temperature_c": -100.0},
+            }
+        )
