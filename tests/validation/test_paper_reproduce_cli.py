@@ -67,7 +67,8 @@ def test_every_qualitative_finding_holds(outdir):
 
 def test_report_is_self_contained(outdir):
     text = (outdir / "report.html").read_text(encoding="utf-8")
-    assert text.count('src="data:image/png;base64,') == len(FIGURES)
+    # Figs. 9-16 (FIGURES) plus Fig. 8, the pads' stiffness
+    assert text.count('src="data:image/png;base64,') == len(FIGURES) + 1
     assert "http://" not in text.replace("http://www.w3.org", "")
     for external in ('src="http', "<link", "<script"):
         assert external not in text
@@ -80,3 +81,9 @@ def test_report_is_self_contained(outdir):
 
 def test_no_partial_files_left(outdir):
     assert not list(outdir.rglob("*.part"))
+
+
+def test_fig8_pad_stiffness_written_and_in_report(outdir):
+    png = outdir / "fig08_pad_stiffness.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "<h3>Fig. 8</h3>" in (outdir / "report.html").read_text()

@@ -9,7 +9,7 @@ import click
 __all__ = ["reproduce"]
 
 
-@click.command(short_help="The paper's study: Figs. 9-16, its numbers beside ours, HTML report.")
+@click.command(short_help="The paper's study: Figs. 8-16, its numbers beside ours, HTML report.")
 @click.option(
     "-o",
     "--output",
@@ -21,7 +21,7 @@ __all__ = ["reproduce"]
 )
 @click.option("--quiet", is_flag=True, help="no progress bar, no summary")
 def reproduce(outdir: Path, quiet: bool) -> None:
-    """Reproduce Wang et al. 2017 (Figs. 9-16 and every number it states).
+    """Reproduce Wang et al. 2017 (Figs. 8-16 and every number it states).
 
     Runs the constant vs frequency-dependent railpad comparison at 20 degC and the
     -30/-10/+20 degC series (presets wang2017_*), then writes to OUTPUT: one PNG per

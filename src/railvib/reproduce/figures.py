@@ -1,4 +1,4 @@
-"""The paper's Figs. 9-16 redrawn from our results (PSD vs frequency, log PSD axis)."""
+"""The paper's figures redrawn from our results: Figs. 9-16 (PSDs) and Fig. 8 (pad stiffness)."""
 
 from __future__ import annotations
 
@@ -9,10 +9,12 @@ import matplotlib
 
 matplotlib.use("Agg", force=False)
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
+from railvib.case import Case  # noqa: E402
 from railvib.plot.psd import plot_psd  # noqa: E402
 from railvib.reproduce.metrics import peak, peak_frequency  # noqa: E402
 from railvib.reproduce.study import (  # noqa: E402
@@ -106,6 +108,41 @@ def save_figure(
     """Draw `spec` and write it as ``<outdir>/<spec.stem>.png``, atomically."""
     fig = draw_figure(spec, results)
     path = Path(outdir) / f"{spec.stem}.png"
+    try:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, format="png")
+    finally:
+        plt.close(fig)
+    return path
+
+
+#: the cases whose pads the paper's Fig. 8 shows (K(f) at -30, -10 and +20 degC)
+FIG8_CASES = ("m30", "m10", "p20")
+
+
+def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path, dpi: int = 100) -> Path:
+    """The paper's Fig. 8: the railpad storage stiffness of the temperature cases, 1-1000 Hz.
+
+    Drawn from the pad models of the study's cases (the paper's log-linear law with
+    kappa = 0.07 held below f0), on log-log axes with the paper's 100 Hz marked.
+    """
+    from railvib.case import build_pad
+    from railvib.plot.pads import plot_stiffness_vs_frequency
+
+    f = np.geomspace(1.0, 1000.0, 200)
+    curves = {
+        float(cases[key].track.pad_temperature_c or 0.0): build_pad(cases[key]).stiffness(f)
+        for key in FIG8_CASES
+    }
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    plot_stiffness_vs_frequency(f, curves, ax=ax)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.axvline(100.0, ls=":", color="0.5", label="paper's Fig. 8 ends at 100 Hz")
+    ax.legend(fontsize="small")
+    ax.set_title("Fig. 8: WJ-7 railpad stiffness, K0 (f/f0)^0.07 (f0 = 5 Hz)")
+    fig.tight_layout()
+    path = Path(outdir) / "fig08_pad_stiffness.png"
     try:
         with atomic_path(path) as tmp:
             fig.savefig(tmp, dpi=dpi, format="png")

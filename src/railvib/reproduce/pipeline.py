@@ -12,7 +12,7 @@ import pandas as pd
 import xarray as xr
 
 from railvib.reproduce.cases import load_study_cases, run_cases
-from railvib.reproduce.figures import save_figure
+from railvib.reproduce.figures import save_figure, save_pad_figure
 from railvib.reproduce.report import write_report
 from railvib.reproduce.study import CASES, FIGURES
 from railvib.reproduce.table import compare, write_table
@@ -51,8 +51,8 @@ class ReproduceResult:
 
 
 def n_steps() -> int:
-    """Number of progress steps :func:`reproduce` reports (cases, figures, 3 writes)."""
-    return len(CASES) + len(FIGURES) + 3
+    """Number of progress steps :func:`reproduce` reports (cases, figures, Fig. 8, 3 writes)."""
+    return len(CASES) + len(FIGURES) + 4
 
 
 def reproduce(
@@ -85,9 +85,10 @@ def reproduce(
             tmp.write_text(case_toml(cases[c.key]), encoding="utf-8")
         files.append(path)
     tick("wrote the resolved case files")
-    figures = []
+    figures = [(8, save_pad_figure(cases, outdir))]
+    tick("drew Fig. 8")
     for spec in FIGURES:
-        figures.append((spec, save_figure(spec, results, outdir)))
+        figures.append((spec.number, save_figure(spec, results, outdir)))
         tick(f"drew Fig. {spec.number}")
     files += [p for _, p in figures]
     table = compare(results)

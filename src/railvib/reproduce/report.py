@@ -11,7 +11,7 @@ from pathlib import Path
 import pandas as pd
 
 from railvib.case import Case
-from railvib.reproduce.study import CASES, FigureSpec
+from railvib.reproduce.study import CASES
 from railvib.results.dataset import atomic_path
 from railvib.solve import case_toml
 
@@ -124,7 +124,7 @@ def _cases_html(cases: Mapping[str, Case]) -> str:
 
 def render_report(
     table: pd.DataFrame,
-    figures: Sequence[tuple[FigureSpec, Path]],
+    figures: Sequence[tuple[int, Path]],
     cases: Mapping[str, Case],
     meta: Mapping[str, str],
 ) -> str:
@@ -134,8 +134,8 @@ def render_report(
     ----------
     table : pandas.DataFrame
         The comparison table (:func:`railvib.reproduce.table.compare`).
-    figures : sequence of (FigureSpec, pathlib.Path)
-        Each figure's specification and PNG file (embedded as base64).
+    figures : sequence of (int, pathlib.Path)
+        Each figure's number in the paper and its PNG file (embedded as base64).
     cases : mapping of str to Case
         The study's validated cases by key.
     meta : mapping of str to str
@@ -146,13 +146,13 @@ def render_report(
     str
         A complete, self-contained HTML page.
     """
-    figs = "".join(f"<h3>Fig. {spec.number}</h3>{_img(path)}" for spec, path in figures)
+    figs = "".join(f"<h3>Fig. {number}</h3>{_img(path)}" for number, path in figures)
     info = "".join(f"<li>{html.escape(k)}: {html.escape(v)}</li>" for k, v in meta.items())
     return (
         '<!DOCTYPE html><html><head><meta charset="utf-8">'
         "<title>railvib: reproduction of Wang et al. 2017</title>"
         f"<style>{_CSS}</style></head><body>"
-        "<h1>railvib reproduce: Wang et al. 2017, Figs. 9-16</h1>"
+        "<h1>railvib reproduce: Wang et al. 2017, Figs. 8-16</h1>"
         f"{_INTRO}<h2>Paper vs railvib</h2>{_table_html(table)}"
         f"<h2>Figures</h2>{figs}<h2>Cases</h2>{_cases_html(cases)}"
         f'<h2>Run</h2><ul class="small">{info}</ul></body></html>\n'
@@ -162,7 +162,7 @@ def render_report(
 def write_report(
     path: str | Path,
     table: pd.DataFrame,
-    figures: Sequence[tuple[FigureSpec, Path]],
+    figures: Sequence[tuple[int, Path]],
     cases: Mapping[str, Case],
     meta: Mapping[str, str],
 ) -> Path:
