@@ -133,11 +133,7 @@ class Vehicle:
 
     def dynamic_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
         """``K + i omega C - omega^2 M`` stacked over frequency, ``(n_freq, n_dof, n_dof)``."""
-        omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
-        out = np.empty((omega.shape[0],) + self.mass_matrix.shape, dtype=complex)
-        out.real = self.stiffness_matrix - omega**2 * self.mass_matrix
-        out.imag = omega * self.damping_matrix
-        return out
+        return _dynamic_stiffness(f, self.mass_matrix, self.damping_matrix, self.stiffness_matrix)
 
     @cached_property
     def wheel_dofs(self) -> NDArray[np.int64]:
@@ -164,19 +160,15 @@ class Vehicle:
         order = self._body_then_wheel_order
         n_dof, n_w = int(order.size), int(self.wheel_dofs.size)
         n_b = n_dof - n_w
-        omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
         m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
 
         def block(rows: slice, cols: slice) -> NDArray[np.complex128]:
-            out = np.empty((int(omega.shape[0]),) + k[rows, cols].shape, dtype=np.complex128)
-            out.real = k[rows, cols] - omega**2 * m[rows, cols]
-            out.imag = omega * c[rows, cols]
-            return out
+            return _dynamic_stiffness(f, m[rows, cols], c[rows, cols], k[rows, cols])
 
         bodies, wheels = slice(0, n_b), slice(n_b, n_dof)
         x = np.linalg.solve(block(bodies, bodies), block(bodies, wheels))  # D_bb^-1 D_bw
         stiffness = block(wheels, wheels) - block(wheels, bodies) @ x
-        recovery = np.empty((int(omega.shape[0]), n_dof, n_w), dtype=np.complex128)
+        recovery = np.empty((int(x.shape[0]), n_dof, n_w), dtype=np.complex128)
         recovery[:, order[:n_b], :] = -x
         recovery[:, order[n_b:], :] = np.eye(n_w)
         return WheelCondensation(
@@ -209,3 +201,14 @@ class Vehicle:
         kkt = np.block([[k, b], [b.T, np.zeros((m, m))]])
         sol = np.linalg.solve(kkt, np.concatenate([weight, np.zeros(m)]))
         return sol[n:]
+
+
+def _dynamic_stiffness(
+    f: ArrayLike, m: NDArray[np.float64], c: NDArray[np.float64], k: NDArray[np.float64]
+) -> NDArray[np.complex128]:
+    """``K + i omega C - omega^2 M`` for (blocks of) real matrices, ``(n_freq, rows, cols)``."""
+    omega = 2.0 * np.pi * np.atleast_1d(np.asarray(f, dtype=float))[:, None, None]
+    out = np.empty((int(omega.shape[0]),) + k.shape, dtype=np.complex128)
+    out.real = k - omega**2 * m
+    out.imag = omega * c
+    return out
