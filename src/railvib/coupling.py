@@ -20,36 +20,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
 from railvib.pem import excitation_vector, wheel_delays
+from railvib.response import FRF
 from railvib.track.periodic import PeriodicTrack
 from railvib.vehicle.assembly import Vehicle, WheelCondensation
 
 __all__ = ["CoupledFRF", "CoupledSystem", "coupled_response"]
 
 
-@dataclass(frozen=True, eq=False)
-class CoupledFRF:
-    """Complex frequency responses to the irregularity (per metre of irregularity).
-
-    Attributes
-    ----------
-    f : numpy.ndarray
-        Frequencies, Hz.
-    vehicle : numpy.ndarray
-        Vehicle DOF displacements per unit irregularity, ``(n_freq, n_dof)``
-        (m/m for bounce, rad/m for pitch).
-    rail : numpy.ndarray
-        Rail displacement under each wheel, ``(n_freq, n_wheel)``, m/m.
-    contact_force : numpy.ndarray
-        Dynamic contact force at each wheel, ``(n_freq, n_wheel)``, N/m.
-    receptance : numpy.ndarray
-        Rail receptance between contact points, ``(n_freq, n_wheel, n_wheel)``, m/N.
-    """
-
-    f: NDArray[np.float64]
-    vehicle: NDArray[np.complex128]
-    rail: NDArray[np.complex128]
-    contact_force: NDArray[np.complex128]
-    receptance: NDArray[np.complex128]
+#: the coupled responses (one container for every solver; kept under its old name)
+CoupledFRF = FRF
 
 
 @dataclass(frozen=True)
@@ -92,7 +71,7 @@ class CoupledSystem:
         """Contact positions along the rail, m (sleepers at multiples of d)."""
         return self.leading_wheel_position - self.vehicle.wheel_offsets
 
-    def frf(self, f: ArrayLike) -> CoupledFRF:
+    def frf(self, f: ArrayLike) -> FRF:
         """Responses to a unit-amplitude irregularity, delayed coherently at each wheel.
 
         Parameters
@@ -102,7 +81,8 @@ class CoupledSystem:
 
         Returns
         -------
-        CoupledFRF
+        FRF
+            With the rail receptance between the contact points.
         """
         f = np.atleast_1d(np.asarray(f, dtype=float))
         x = self.wheel_positions
@@ -111,8 +91,13 @@ class CoupledSystem:
         u_v, force, rail = coupled_response(
             self.vehicle.condensed_to_wheels(f), rec, self.contact_stiffness, v[..., None]
         )
-        return CoupledFRF(
-            f=f, vehicle=u_v[..., 0], rail=rail[..., 0], contact_force=force[..., 0], receptance=rec
+        return FRF(
+            f=f,
+            vehicle=u_v[..., 0],
+            rail=rail[..., 0],
+            contact_force=force[..., 0],
+            dofs=self.vehicle.dofs,
+            receptance=rec,
         )
 
 

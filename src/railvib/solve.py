@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 import numpy as np
-import tomli_w
 import xarray as xr
 from numpy.typing import NDArray
 from scipy.integrate import trapezoid
@@ -15,6 +13,7 @@ from scipy.stats import norm
 from railvib.case import Case, build_grid, build_spectrum, build_system, load_case
 from railvib.coupling import CoupledSystem
 from railvib.grid import FrequencyGrid
+from railvib.io import railvib_version
 from railvib.results.dataset import build_dataset
 from railvib.spectra.base import SpatialSpectrum
 
@@ -24,17 +23,9 @@ __all__ = ["contact_check", "case_toml", "railvib_version", "run", "run_system"]
 LOSS_OF_CONTACT_NOTE = 0.01
 
 
-def railvib_version() -> str:
-    """Installed railvib version (``"unknown"`` when run from a source tree)."""
-    try:
-        return version("railvib")
-    except PackageNotFoundError:
-        return "unknown"
-
-
 def case_toml(case: Case) -> str:
-    """The full, resolved case as TOML text (stored with every result)."""
-    return tomli_w.dumps(case.model_dump(mode="json", exclude_none=True))
+    """The full, resolved case as TOML text (same as :meth:`railvib.case.Case.to_toml`)."""
+    return case.to_toml()
 
 
 def run_system(
@@ -64,10 +55,6 @@ def run_system(
     f = grid.f
     frf = system.frf(f)
     s_r = spectrum.temporal(f, system.speed)
-    n_wheel = frf.rail.shape[1]
-    vehicle_labels = list(system.vehicle.dofs)
-    labels = vehicle_labels + [f"rail@wheel{j + 1}" for j in range(n_wheel)]
-    dof_units = ["rad" if lab.endswith(".pitch") else "m" for lab in labels]
     pad_k = system.track.pad.stiffness(f, system.track.pad_temperature)
     extra = {
         **contact_check(system, f, frf.contact_force, s_r),
@@ -87,16 +74,7 @@ def run_system(
         "sign_convention": "displacements positive downward; irregularity > 0 is a dip",
         **(attrs or {}),
     }
-    return build_dataset(
-        f=f,
-        labels=labels,
-        frf=np.concatenate([frf.vehicle, frf.rail], axis=1),
-        dof_units=dof_units,
-        force_frf=frf.contact_force,
-        irregularity_psd=s_r,
-        attrs=meta,
-        extra=extra,
-    )
+    return build_dataset(frf, s_r, attrs=meta, extra=extra)
 
 
 def contact_check(
@@ -156,5 +134,5 @@ def run(case: Case | str | Path) -> xr.Dataset:
         build_system(case),
         build_grid(case),
         build_spectrum(case),
-        attrs={"title": case.title, "case_toml": case_toml(case), "rail_model": case.rail_model},
+        attrs={"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
     )

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
+import tomli_w
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 __all__ = [
@@ -180,3 +181,7 @@ class Case(_Section):
     )
     frequency: FrequencySection
     output: OutputSection = Field(default_factory=OutputSection)
+
+    def to_toml(self) -> str:
+        """The full, resolved case as TOML text (stored with every result)."""
+        return tomli_w.dumps(self.model_dump(mode="json", exclude_none=True))

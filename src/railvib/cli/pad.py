@@ -115,9 +115,9 @@ def fit(
     import numpy as np
 
     from railvib.errors import CaseError
+    from railvib.io import atomic_path, save_figure
     from railvib.pads import WLF, fit_log_linear, fit_pad, pad_toml, read_measurements_csv
     from railvib.plot.pads import plot_master_curve, plot_stiffness_vs_frequency
-    from railvib.results import atomic_path
 
     if tg is not None and (c1 is not None or c2 is not None):
         raise CaseError("--tg", tg, "give either --tg or --c1 and --c2, not both")
@@ -164,27 +164,12 @@ def fit(
     fr = master.reduced_frequency_hz
     f_curve = np.geomspace(fr.min(), fr.max(), 400)
     axes = plot_master_curve(master, f_curve, result.model.stiffness(f_curve))
-    _save_figure(axes[0].get_figure(), outdir / "master_curve.png", tight=False)
+    save_figure(axes[0], outdir / "master_curve.png", tight=False)
 
     f_plot = np.geomspace(f_band[0], f_band[1], 200)
     ax = plot_stiffness_vs_frequency(f_plot, {t: result.model.stiffness(f_plot, t) for t in temps})
     ax.set_title(f"{data.name}: {model} with TTS")
-    _save_figure(ax.get_figure(), outdir / "stiffness_vs_frequency.png")
+    save_figure(ax, outdir / "stiffness_vs_frequency.png")
 
     click.echo(report)
     click.echo(f"wrote {outdir / 'pad.toml'}, master_curve.png, stiffness_vs_frequency.png")
-
-
-def _save_figure(fig: object, path: Path, tight: bool = True) -> None:
-    """Write a figure as PNG atomically and close it."""
-    import matplotlib.pyplot as plt
-    from matplotlib.figure import Figure
-
-    from railvib.results import atomic_path
-
-    assert isinstance(fig, Figure), "plots are drawn on top-level figures"
-    if tight:
-        fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=120, format="png")
-    plt.close(fig)

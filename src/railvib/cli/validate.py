@@ -16,7 +16,7 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from railvib.coupling import CoupledSystem
-from railvib.results import atomic_path
+from railvib.io import atomic_path
 from railvib.spectra.base import SpatialSpectrum
 from railvib.validation import (
     ValidationResult,

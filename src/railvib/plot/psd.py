@@ -12,7 +12,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
 
-from railvib.results.dataset import atomic_path  # noqa: E402
+from railvib.io import save_figure  # noqa: E402
+from railvib.response import rail_label  # noqa: E402
 
 __all__ = ["OVERVIEW_GROUPS", "axis_label", "plot_psd", "save_overview"]
 
@@ -21,7 +22,7 @@ OVERVIEW_GROUPS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
     ("psd_carbody", "Car body", ("carbody.bounce",)),
     ("psd_bogie", "Bogies", ("bogie1.bounce", "bogie2.bounce")),
     ("psd_wheelset", "Wheelsets", tuple(f"wheelset{i}.bounce" for i in range(1, 5))),
-    ("psd_rail", "Rail under the wheels", tuple(f"rail@wheel{i}" for i in range(1, 5))),
+    ("psd_rail", "Rail under the wheels", tuple(rail_label(i) for i in range(1, 5))),
 )
 
 
@@ -97,10 +98,5 @@ def save_overview(ds: xr.Dataset, outdir: str | Path) -> list[Path]:
         fig, ax = plt.subplots(figsize=(7, 4))
         plot_psd(ds, present, ax=ax)
         ax.set_title(title)
-        fig.tight_layout()
-        path = outdir / f"{stem}.png"
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=110, format="png")
-        plt.close(fig)
-        written.append(path)
+        written.append(save_figure(fig, outdir / f"{stem}.png"))
     return written

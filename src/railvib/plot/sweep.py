@@ -18,15 +18,15 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
 
 from railvib.errors import CaseError  # noqa: E402
-from railvib.results.dataset import atomic_path  # noqa: E402
+from railvib.io import save_figure  # noqa: E402
+from railvib.response import rail_label  # noqa: E402
 
 __all__ = ["DEFAULT_RESPONSES", "plot_sweep", "save_axes", "save_sweep_plots", "sweep_dims"]
 
 #: responses drawn by :func:`save_sweep_plots` when present
-DEFAULT_RESPONSES = ("carbody.bounce", "wheelset1.bounce", "rail@wheel1")
+DEFAULT_RESPONSES = ("carbody.bounce", "wheelset1.bounce", rail_label(1))
 
 
 def sweep_dims(ds: xr.Dataset) -> list[str]:
@@ -147,12 +147,7 @@ def plot_sweep(
 
 def save_axes(ax: Axes, path: str | Path) -> Path:
     """Save the figure of `ax` as a PNG atomically and close it."""
-    fig = ax.get_figure(root=True)
-    assert isinstance(fig, Figure)
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=120, format="png")
-    plt.close(fig)
-    return Path(path)
+    return save_figure(ax, path, tight=False)
 
 
 def save_sweep_plots(

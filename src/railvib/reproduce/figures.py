@@ -15,6 +15,7 @@ from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 from railvib.case import Case  # noqa: E402
+from railvib.io import save_figure  # noqa: E402
 from railvib.plot.psd import plot_psd  # noqa: E402
 from railvib.reproduce.metrics import peak, peak_frequency  # noqa: E402
 from railvib.reproduce.study import (  # noqa: E402
@@ -23,9 +24,8 @@ from railvib.reproduce.study import (  # noqa: E402
     FigureSpec,
     StudyCase,
 )
-from railvib.results.dataset import atomic_path  # noqa: E402
 
-__all__ = ["draw_figure", "save_figure"]
+__all__ = ["draw_figure", "save_pad_figure", "save_paper_figure"]
 
 _CASES: Mapping[str, StudyCase] = {c.key: c for c in CASES}
 _PANEL_LETTERS = "abcdef"
@@ -102,25 +102,18 @@ def draw_figure(spec: FigureSpec, results: Mapping[str, xr.Dataset]) -> Figure:
     return fig
 
 
-def save_figure(
-    spec: FigureSpec, results: Mapping[str, xr.Dataset], outdir: str | Path, dpi: int = 100
+def save_paper_figure(
+    spec: FigureSpec, results: Mapping[str, xr.Dataset], outdir: str | Path
 ) -> Path:
     """Draw `spec` and write it as ``<outdir>/<spec.stem>.png``, atomically."""
-    fig = draw_figure(spec, results)
-    path = Path(outdir) / f"{spec.stem}.png"
-    try:
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=dpi, format="png")
-    finally:
-        plt.close(fig)
-    return path
+    return save_figure(draw_figure(spec, results), Path(outdir) / f"{spec.stem}.png", tight=False)
 
 
 #: the cases whose pads the paper's Fig. 8 shows (K(f) at -30, -10 and +20 degC)
 FIG8_CASES = ("m30", "m10", "p20")
 
 
-def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path, dpi: int = 100) -> Path:
+def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path) -> Path:
     """The paper's Fig. 8: the railpad storage stiffness of the temperature cases, 1-1000 Hz.
 
     Drawn from the pad models of the study's cases (the paper's log-linear law with
@@ -141,11 +134,4 @@ def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path, dpi: int = 10
     ax.axvline(100.0, ls=":", color="0.5", label="paper's Fig. 8 ends at 100 Hz")
     ax.legend(fontsize="small")
     ax.set_title("Fig. 8: WJ-7 railpad stiffness, K0 (f/f0)^0.07 (f0 = 5 Hz)")
-    fig.tight_layout()
-    path = Path(outdir) / "fig08_pad_stiffness.png"
-    try:
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=dpi, format="png")
-    finally:
-        plt.close(fig)
-    return path
+    return save_figure(fig, Path(outdir) / "fig08_pad_stiffness.png")

@@ -11,13 +11,12 @@ from pathlib import Path
 import pandas as pd
 import xarray as xr
 
+from railvib.io import railvib_version, write_text
 from railvib.reproduce.cases import load_study_cases, run_cases
-from railvib.reproduce.figures import save_figure, save_pad_figure
+from railvib.reproduce.figures import save_pad_figure, save_paper_figure
 from railvib.reproduce.report import write_report
 from railvib.reproduce.study import CASES, FIGURES
 from railvib.reproduce.table import compare, write_table
-from railvib.results.dataset import atomic_path
-from railvib.solve import case_toml, railvib_version
 
 __all__ = ["DEFAULT_OUTDIR", "ReproduceResult", "n_steps", "reproduce"]
 
@@ -80,15 +79,12 @@ def reproduce(
     results = run_cases(on_case=lambda c: tick(f"ran {c.preset}"))
     files: list[Path] = []
     for c in CASES:
-        path = outdir / "cases" / f"{c.preset}.toml"
-        with atomic_path(path) as tmp:
-            tmp.write_text(case_toml(cases[c.key]), encoding="utf-8")
-        files.append(path)
+        files.append(write_text(outdir / "cases" / f"{c.preset}.toml", cases[c.key].to_toml()))
     tick("wrote the resolved case files")
     figures = [(8, save_pad_figure(cases, outdir))]
     tick("drew Fig. 8")
     for spec in FIGURES:
-        figures.append((spec.number, save_figure(spec, results, outdir)))
+        figures.append((spec.number, save_paper_figure(spec, results, outdir)))
         tick(f"drew Fig. {spec.number}")
     files += [p for _, p in figures]
     table = compare(results)

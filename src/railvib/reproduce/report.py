@@ -11,9 +11,8 @@ from pathlib import Path
 import pandas as pd
 
 from railvib.case import Case
+from railvib.io import atomic_path
 from railvib.reproduce.study import CASES
-from railvib.results.dataset import atomic_path
-from railvib.solve import case_toml
 
 __all__ = ["render_report", "write_report"]
 
@@ -118,7 +117,7 @@ def _cases_html(cases: Mapping[str, Case]) -> str:
     return (
         f"<table>{head}{''.join(rows)}</table>"
         "<p>All cases share everything else; the full resolved constant case:</p>"
-        f"<pre>{html.escape(case_toml(base))}</pre>"
+        f"<pre>{html.escape(base.to_toml())}</pre>"
     )
 
 

@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pandas as pd
 
+from railvib.io import atomic_path
 from railvib.reproduce.metrics import METRICS, Results
 from railvib.reproduce.study import PAPER_NUMBERS, PaperNumber
-from railvib.results.dataset import atomic_path
 
 __all__ = ["COLUMNS", "compare", "format_value", "to_markdown", "write_table"]
 

@@ -2,10 +2,6 @@
 
 from __future__ import annotations
 
-import os
-import tempfile
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -13,8 +9,9 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib import units
-from railvib.pem import acceleration_psd, response_psd
+from railvib.io import atomic_path
+from railvib.response import FRF, displacement_unit
+from railvib.results.variables import VARIABLES, compute_variables
 
 __all__ = ["atomic_path", "build_dataset", "load_netcdf", "save_csv", "save_netcdf"]
 
@@ -22,116 +19,48 @@ PSD_CONVENTION = "one-sided, per Hz, temporal (variance = integral of the PSD ov
 
 
 def build_dataset(
-    f: NDArray[np.float64],
-    labels: list[str],
-    frf: NDArray[np.complex128],
-    dof_units: list[str],
-    force_frf: NDArray[np.complex128],
+    frf: FRF,
     irregularity_psd: NDArray[np.float64],
-    attrs: dict[str, Any],
+    attrs: dict[str, Any] | None = None,
     extra: dict[str, xr.DataArray] | None = None,
 ) -> xr.Dataset:
-    """Assemble the result dataset of one case.
+    """Assemble the result dataset of one case from its responses.
 
     Parameters
     ----------
-    f : numpy.ndarray
-        Frequencies in Hz, ``(n_freq,)``.
-    labels : list of str
-        Response labels, ``(n_resp,)``, e.g. ``"wheelset2.bounce"``, ``"rail@wheel2"``.
-    frf : numpy.ndarray
-        Complex displacement per unit irregularity, ``(n_freq, n_resp)``.
-    dof_units : list of str
-        Displacement unit of each response (``"m"`` or ``"rad"``).
-    force_frf : numpy.ndarray
-        Complex contact force per unit irregularity, ``(n_freq, n_wheel)``, N/m.
+    frf : FRF
+        Responses per metre of irregularity (no batch axes): vehicle DOFs, rail
+        under each wheel and contact forces, with the vehicle DOF names.
     irregularity_psd : numpy.ndarray
         One-sided temporal irregularity PSD applied, m^2/Hz, ``(n_freq,)``.
-    attrs : dict
+    attrs : dict, optional
         Global attributes (case TOML, version, ...).
     extra : dict of xarray.DataArray, optional
-        Further variables (e.g. the pad stiffness) to include.
+        Further variables (e.g. the pad stiffness, the contact check) to include.
 
     Returns
     -------
     xarray.Dataset
+        Dims ``frequency`` (Hz), ``response`` and ``wheel``; every variable of
+        :data:`railvib.results.variables.VARIABLES` with its units.
     """
-    psd_u = response_psd(frf, irregularity_psd)
-    psd_a = acceleration_psd(f, psd_u)
-    psd_p = response_psd(force_frf, irregularity_psd)
+    labels = list(frf.labels)
     coords = {
-        "frequency": ("frequency", f, {"units": "Hz", "long_name": "frequency"}),
+        "frequency": ("frequency", frf.f, {"units": "Hz", "long_name": "frequency"}),
         "response": ("response", labels, {"long_name": "response"}),
-        "displacement_unit": ("response", dof_units, {"long_name": "unit of the displacement"}),
-        "wheel": ("wheel", np.arange(1, force_frf.shape[1] + 1), {"long_name": "wheel"}),
+        "displacement_unit": (
+            "response",
+            [displacement_unit(lab) for lab in labels],
+            {"long_name": "unit of the displacement"},
+        ),
+        "wheel": ("wheel", np.arange(1, frf.n_wheel + 1), {"long_name": "wheel"}),
     }
-    data = {
-        "psd_acceleration": (
-            ("frequency", "response"),
-            psd_a,
-            {
-                "units": units.ACCELERATION_PSD,
-                "long_name": "acceleration PSD",
-                "note": "pitch responses are in (rad/s^2)^2/Hz",
-            },
-        ),
-        "psd_displacement": (
-            ("frequency", "response"),
-            psd_u,
-            {
-                "units": units.DISPLACEMENT_PSD,
-                "long_name": "displacement PSD",
-                "note": "pitch responses are in rad^2/Hz",
-            },
-        ),
-        "frf_displacement": (
-            ("frequency", "response"),
-            frf,
-            {
-                "units": "m/m",
-                "long_name": "displacement per unit irregularity (complex)",
-                "note": "pitch responses are in rad/m; exp(+i omega t); input = profile at the "
-                "leading wheel",
-            },
-        ),
-        "psd_force": (
-            ("frequency", "wheel"),
-            psd_p,
-            {"units": units.FORCE_PSD, "long_name": "dynamic wheel-rail contact force PSD"},
-        ),
-        "frf_force": (
-            ("frequency", "wheel"),
-            force_frf,
-            {"units": "N/m", "long_name": "contact force per unit irregularity (complex)"},
-        ),
-        "irregularity_psd": (
-            ("frequency",),
-            irregularity_psd,
-            {"units": units.DISPLACEMENT_PSD, "long_name": "irregularity PSD applied"},
-        ),
-    }
-    ds = xr.Dataset(data, coords=coords, attrs={"psd_convention": PSD_CONVENTION, **attrs})
+    values = compute_variables(frf, irregularity_psd, VARIABLES)
+    data = {name: (var.dims, values[name], var.attrs) for name, var in VARIABLES.items()}
+    ds = xr.Dataset(data, coords=coords, attrs={"psd_convention": PSD_CONVENTION, **(attrs or {})})
     for name, da in (extra or {}).items():
         ds[name] = da
     return ds
-
-
-@contextmanager
-def atomic_path(path: str | Path) -> Iterator[Path]:
-    """Yield a temporary path next to `path`; move it onto `path` only if the block succeeds."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    os.close(fd)
-    try:
-        yield Path(tmp)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual file mode
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
 
 
 def _split_complex(ds: xr.Dataset) -> xr.Dataset:

@@ -8,7 +8,7 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import trapezoid
 
-__all__ = ["band_rms", "dominant_frequency", "peak", "summary"]
+__all__ = ["band_rms", "dominant_frequency", "peak", "summary", "summary_attrs", "summary_names"]
 
 
 def peak(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataArray:
@@ -32,6 +32,40 @@ def band_rms(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.D
     return xr.DataArray(np.sqrt(var), dims=dims, coords=coords)
 
 
+#: RMS unit of each PSD variable (the square root of the PSD integrated over Hz)
+_RMS_UNITS = {"psd_acceleration": "m/s^2", "psd_displacement": "m", "psd_force": "N"}
+
+
+def summary_names(bands: Sequence[Sequence[float]]) -> list[str]:
+    """Names of the variables :func:`summary` returns for RMS bands `bands` (Hz)."""
+    return ["peak", "dominant_frequency", "rms"] + [f"rms_{lo:g}_{hi:g}_hz" for lo, hi in bands]
+
+
+def summary_attrs(name: str, variable: str, psd_units: str) -> dict[str, str]:
+    """``units`` and ``long_name`` of summary variable `name` of PSD `variable`.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`summary_names`.
+    variable : str
+        The PSD summarised, e.g. ``"psd_acceleration"``.
+    psd_units : str
+        Units of that PSD.
+    """
+    what = variable.removeprefix("psd_")
+    rms_units = _RMS_UNITS.get(variable, f"sqrt({psd_units}*Hz)")
+    note = {"note": "pitch responses are in rad-based units"}
+    if name == "peak":
+        return {"units": psd_units, "long_name": f"peak {what} PSD", **note}
+    if name == "dominant_frequency":
+        return {"units": "Hz", "long_name": f"frequency of the peak {what} PSD"}
+    if name == "rms":
+        return {"units": rms_units, "long_name": f"{what} RMS over the grid", **note}
+    lo, hi = name.removeprefix("rms_").removesuffix("_hz").split("_")
+    return {"units": rms_units, "long_name": f"{what} RMS over {lo}-{hi} Hz", **note}
+
+
 def summary(
     ds: xr.Dataset,
     bands: Sequence[tuple[float, float]] = (),
@@ -51,26 +85,20 @@ def summary(
     Returns
     -------
     xarray.Dataset
-        Variables ``peak``, ``dominant_frequency``, ``rms`` and ``rms_<lo>_<hi>_hz``.
+        Variables ``peak``, ``dominant_frequency``, ``rms`` and ``rms_<lo>_<hi>_hz``
+        (see :func:`summary_names`), with units.
     """
     psd = ds[variable]
-    unit = psd.attrs.get("units", "")
-    rms_unit = "m/s^2" if variable == "psd_acceleration" else f"sqrt({unit}*Hz)"
-    out = xr.Dataset(
+    unit = str(psd.attrs.get("units", ""))
+    names = summary_names(bands)
+    values = [peak(psd), dominant_frequency(psd), band_rms(psd)]
+    values += [band_rms(psd, (lo, hi)) for lo, hi in bands]
+    return xr.Dataset(
         {
-            "peak": peak(psd).assign_attrs(units=unit, long_name="peak PSD"),
-            "dominant_frequency": dominant_frequency(psd).assign_attrs(
-                units="Hz", long_name="frequency of the peak PSD"
-            ),
-            "rms": band_rms(psd).assign_attrs(units=rms_unit, long_name="RMS over the grid"),
+            name: da.assign_attrs(summary_attrs(name, variable, unit))
+            for name, da in zip(names, values, strict=True)
         }
     )
-    for lo, hi in bands:
-        name = f"rms_{lo:g}_{hi:g}_hz"
-        out[name] = band_rms(psd, (lo, hi)).assign_attrs(
-            units=rms_unit, long_name=f"RMS over {lo:g}-{hi:g} Hz"
-        )
-    return out
 
 
 def _in_band(psd: xr.DataArray, band: tuple[float, float] | None) -> xr.DataArray:

@@ -11,7 +11,6 @@ contact differ but whose track and wheel positions agree still share ``R``.
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -22,7 +21,9 @@ from railvib.case import Case, build_grid, build_spectrum, build_system, case_fr
 from railvib.case.load import merge_case_dicts
 from railvib.coupling import CoupledSystem, coupled_response
 from railvib.pem import excitation_vector, wheel_delays
-from railvib.results.stats import summary
+from railvib.response import FRF, response_labels
+from railvib.results.stats import summary, summary_names
+from railvib.results.variables import compute_variables
 from railvib.sweep.layout import SweepLayout, is_cheap_field
 from railvib.sweep.spec import nested_override
 from railvib.units import kmh_to_ms
@@ -37,23 +38,8 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True, eq=False)
-class BatchFRF:
-    """Complex responses per unit irregularity for several speeds of one system.
-
-    Attributes
-    ----------
-    vehicle : numpy.ndarray
-        Vehicle DOF displacements, ``(n_speed, n_freq, n_dof)``, m/m (rad/m for pitch).
-    rail : numpy.ndarray
-        Rail displacement under each wheel, ``(n_speed, n_freq, n_wheel)``, m/m.
-    contact_force : numpy.ndarray
-        Contact force at each wheel, ``(n_speed, n_freq, n_wheel)``, N/m.
-    """
-
-    vehicle: NDArray[np.complex128]
-    rail: NDArray[np.complex128]
-    contact_force: NDArray[np.complex128]
+#: responses of several speeds of one system (one container for every solver)
+BatchFRF = FRF
 
 
 def frf_many_speeds(
@@ -85,7 +71,8 @@ def frf_many_speeds(
 
     Returns
     -------
-    BatchFRF
+    FRF
+        Arrays ``(n_speed, n_freq, n)``: the speed is the leading batch axis.
     """
     f = np.atleast_1d(np.asarray(f, dtype=float))
     speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
@@ -103,18 +90,12 @@ def frf_many_speeds(
     def first(a: NDArray[Any]) -> NDArray[np.complex128]:
         return np.moveaxis(np.asarray(a, dtype=np.complex128), -1, 0)
 
-    return BatchFRF(vehicle=first(u_v), rail=first(rail), contact_force=first(force))
+    return FRF(f, first(u_v), first(rail), first(force), system.vehicle.dofs, rec)
 
 
 def case_labels(system: CoupledSystem) -> list[str]:
     """Response labels of a run: vehicle DOFs, then ``rail@wheel<j>``."""
-    n_wheel = system.vehicle.wheel_offsets.size
-    return list(system.vehicle.dofs) + [f"rail@wheel{j + 1}" for j in range(n_wheel)]
-
-
-def summary_names(bands: list[tuple[float, float]] | list[list[float]]) -> list[str]:
-    """Names of the summary variables of :func:`railvib.results.summary`."""
-    return ["peak", "dominant_frequency", "rms"] + [f"rms_{lo:g}_{hi:g}_hz" for lo, hi in bands]
+    return list(response_labels(system.vehicle.dofs, system.vehicle.wheel_offsets.size))
 
 
 def _key(d: Any) -> str:
@@ -154,15 +135,33 @@ def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]
     """
     layout = SweepLayout(spec)
     base = spec["base_case"]
-    base_case = case_from_dict(base)
-    f = build_grid(base_case).f
-    omega4 = (2.0 * np.pi * f) ** 4
-    cheap = [is_cheap_field(ax["field"]) for ax in spec["axes"]]
+    f = build_grid(case_from_dict(base)).f
+    cases, groups = _chunk_cases(spec, layout, chunk_id)
+    frf, s_r = _solve_groups(f, cases, groups)
+    out: dict[str, NDArray[Any]] = dict(compute_variables(frf, s_r, spec["variables"]))
+    target = compute_variables(frf, s_r, [spec["summary_variable"]])[spec["summary_variable"]]
+    da = xr.DataArray(
+        target,
+        dims=("case", "frequency", "response"),
+        coords={"frequency": f, "response": list(frf.labels)},
+        attrs={"units": ""},
+    )
+    bands = [(float(lo), float(hi)) for lo, hi in base["output"]["rms_bands"]]
+    stats = summary(xr.Dataset({"psd": da}), bands=bands, variable="psd")
+    for name in summary_names(bands):
+        out[f"summary/{name}"] = stats[name].transpose("case", "response").values
+    return out
 
+
+def _chunk_cases(
+    spec: dict[str, Any], layout: SweepLayout, chunk_id: int
+) -> tuple[list[dict[str, Any]], list[list[int]]]:
+    """The case dicts of a chunk, and the groups of cases that share the coupled system."""
+    cheap = [is_cheap_field(ax["field"]) for ax in spec["axes"]]
     cases: list[dict[str, Any]] = []
     groups: dict[str, list[int]] = {}
     for i, index in enumerate(layout.chunk_indices(chunk_id)):
-        full = base
+        full = spec["base_case"]
         struct_override: dict[str, Any] = {}
         for (field, value), is_cheap in zip(layout.overrides(index), cheap, strict=True):
             full = merge_case_dicts(full, nested_override(field, value))
@@ -170,15 +169,25 @@ def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]
                 struct_override[field] = value
         cases.append(full)
         groups.setdefault(_key(struct_override), []).append(i)
+    return cases, list(groups.values())
 
+
+def _solve_groups(
+    f: NDArray[np.float64], cases: list[dict[str, Any]], groups: list[list[int]]
+) -> tuple[FRF, NDArray[np.float64]]:
+    """Responses of every case, ``(n_case, n_freq, ...)``, and the irregularity PSD applied.
+
+    Each group shares one coupled system and is solved in one batched call over its
+    speeds; groups share the rail receptance and the vehicle condensation where
+    their track and vehicle agree.
+    """
     n_case = len(cases)
-    frf_all: NDArray[np.complex128] | None = None
-    force_all: NDArray[np.complex128] | None = None
+    per_case: list[FRF | None] = [None] * n_case
     s_r = np.empty((n_case, f.size))
     receptances: dict[str, NDArray[np.complex128]] = {}
     condensations: dict[str, WheelCondensation] = {}
     spectra: dict[str, Any] = {}
-    for members in groups.values():
+    for members in groups:
         case = case_from_dict(cases[members[0]])
         system = build_system(case)
         tkey = _track_key(cases[members[0]])
@@ -196,50 +205,22 @@ def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]
             receptance=receptances[tkey],
             condensation=condensations[vkey],
         )
-        if frf_all is None:
-            n_resp = batch.vehicle.shape[2] + batch.rail.shape[2]
-            frf_all = np.empty((n_case, f.size, n_resp), dtype=complex)
-            force_all = np.empty((n_case, f.size, batch.rail.shape[2]), dtype=complex)
-            labels = case_labels(system)
-        assert force_all is not None
         for i in members:
-            k = speeds.index(cases[i]["speed_kmh"])
-            frf_all[i] = np.concatenate([batch.vehicle[k], batch.rail[k]], axis=1)
-            force_all[i] = batch.contact_force[k]
+            per_case[i] = batch.at(speeds.index(cases[i]["speed_kmh"]))
             ikey = _key(cases[i]["irregularity"])
             if ikey not in spectra:
                 spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
             s_r[i] = spectra[ikey].temporal(f, kmh_to_ms(cases[i]["speed_kmh"]))
-    assert frf_all is not None
-    assert force_all is not None
-
-    psd_u = np.abs(frf_all) ** 2 * s_r[:, :, None]
-    psd_a = psd_u * omega4[None, :, None]
-    out: dict[str, NDArray[Any]] = {}
-    for name in spec["variables"]:
-        if name == "psd_acceleration":
-            out[name] = psd_a
-        elif name == "psd_displacement":
-            out[name] = psd_u
-        elif name == "psd_force":
-            out[name] = np.abs(force_all) ** 2 * s_r[:, :, None]
-        elif name == "irregularity_psd":
-            out[name] = s_r
-    target = psd_a if spec["summary_variable"] == "psd_acceleration" else psd_u
-    da = xr.DataArray(
-        target,
-        dims=("case", "frequency", "response"),
-        coords={"frequency": f, "response": labels},
-        attrs={"units": ""},
+    solved = [frf for frf in per_case if frf is not None]
+    assert len(solved) == n_case, "every case belongs to one group"
+    frf = FRF(
+        f,
+        np.stack([h.vehicle for h in solved]),
+        np.stack([h.rail for h in solved]),
+        np.stack([h.contact_force for h in solved]),
+        solved[0].dofs,
     )
-    stats = summary(
-        xr.Dataset({"psd": da}),
-        bands=[tuple(b) for b in base["output"]["rms_bands"]],
-        variable="psd",
-    )
-    for name in summary_names(base["output"]["rms_bands"]):
-        out[f"summary/{name}"] = stats[name].transpose("case", "response").values
-    return out
+    return frf, s_r
 
 
 def _with_irregularity(case: Case, full: dict[str, Any]) -> Case:

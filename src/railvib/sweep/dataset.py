@@ -10,10 +10,12 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib import units
 from railvib.case import build_grid, build_system, case_from_dict
-from railvib.results.dataset import PSD_CONVENTION, atomic_path, save_netcdf
-from railvib.sweep.batch import case_labels, summary_names
+from railvib.io import atomic_path, railvib_version
+from railvib.results.dataset import PSD_CONVENTION, save_netcdf
+from railvib.results.stats import summary_attrs, summary_names
+from railvib.results.variables import VARIABLES
+from railvib.sweep.batch import case_labels
 from railvib.sweep.layout import SweepLayout
 
 __all__ = [
@@ -25,12 +27,6 @@ __all__ = [
     "sweep_dataset",
 ]
 
-_PER_FREQ_ATTRS = {
-    "psd_acceleration": (units.ACCELERATION_PSD, "acceleration PSD"),
-    "psd_displacement": (units.DISPLACEMENT_PSD, "displacement PSD"),
-    "psd_force": (units.FORCE_PSD, "dynamic wheel-rail contact force PSD"),
-    "irregularity_psd": (units.DISPLACEMENT_PSD, "irregularity PSD applied"),
-}
 _SUFFIX_UNITS = (
     ("_n_per_m", "N/m"),
     ("_ns_per_m", "N s/m"),
@@ -110,55 +106,26 @@ def sweep_dataset(
     data: dict[str, Any] = {}
     sweep_dims = tuple(dims)
     for name in spec["variables"]:
-        unit, long_name = _PER_FREQ_ATTRS[name]
-        extra = (
-            ()
-            if name == "irregularity_psd"
-            else ("wheel",)
-            if name == "psd_force"
-            else ("response",)
-        )
-        da = xr.DataArray(arrays[name], dims=(*sweep_dims, "frequency", *extra))
-        data[name] = da.transpose("frequency", *extra, *sweep_dims).assign_attrs(
-            units=unit, long_name=long_name
-        )
-    psd_unit = _PER_FREQ_ATTRS[spec["summary_variable"]][0]
-    rms_unit = "m/s^2" if spec["summary_variable"] == "psd_acceleration" else "m"
-    what = spec["summary_variable"].replace("psd_", "")
+        var = VARIABLES[name]
+        da = xr.DataArray(arrays[name], dims=(*sweep_dims, *var.dims))
+        data[name] = da.transpose(*var.dims, *sweep_dims).assign_attrs(var.attrs)
+    summarised = spec["summary_variable"]
     for name in summary_names(spec["base_case"]["output"]["rms_bands"]):
         da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, "response"))
-        da = da.transpose("response", *sweep_dims)
-        if name == "peak":
-            attrs = {"units": psd_unit, "long_name": f"peak {what} PSD"}
-        elif name == "dominant_frequency":
-            attrs = {"units": "Hz", "long_name": f"frequency of the peak {what} PSD"}
-        elif name == "rms":
-            attrs = {"units": rms_unit, "long_name": f"{what} RMS over the grid"}
-        else:
-            lo, hi = name[4:-3].split("_")
-            attrs = {"units": rms_unit, "long_name": f"{what} RMS over {lo}-{hi} Hz"}
-        attrs["note"] = "pitch responses are in rad-based units"
-        data[name] = da.assign_attrs(attrs)
-    from railvib.solve import case_toml
-
+        attrs = summary_attrs(name, summarised, VARIABLES[summarised].units)
+        data[name] = da.transpose("response", *sweep_dims).assign_attrs(attrs)
     attrs = {
         "title": spec["title"],
         "psd_convention": PSD_CONVENTION,
-        "railvib_version": _version(),
+        "railvib_version": railvib_version(),
         "sweep_fingerprint": fingerprint,
         "sweep_spec_json": json.dumps(spec, sort_keys=True, default=str),
-        "base_case_toml": case_toml(base),
+        "base_case_toml": base.to_toml(),
         "sweep_dims": ",".join(dims),
         "summary_variable": spec["summary_variable"],
         "time_dependence": "exp(+i omega t)",
     }
     return xr.Dataset(data, coords=coords, attrs=attrs)
-
-
-def _version() -> str:
-    from railvib.solve import railvib_version
-
-    return railvib_version()
 
 
 def _coord_array(values: list[Any]) -> NDArray[Any]:

@@ -38,6 +38,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from railvib.case import Case, case_from_dict, merge_case_dicts
 from railvib.errors import CaseError
+from railvib.results.variables import PER_FREQUENCY, VARIABLES
 
 __all__ = [
     "PER_FREQUENCY_VARIABLES",
@@ -49,12 +50,7 @@ __all__ = [
 ]
 
 #: per-frequency variables a sweep may keep, with their extra dimension
-PER_FREQUENCY_VARIABLES = {
-    "psd_acceleration": "response",
-    "psd_displacement": "response",
-    "psd_force": "wheel",
-    "irregularity_psd": None,
-}
+PER_FREQUENCY_VARIABLES = {name: VARIABLES[name].extra_dim for name in PER_FREQUENCY}
 
 #: case fields that cannot vary: every case shares one grid and one set of summary bands
 _FIXED_PREFIXES = ("frequency", "output", "title")

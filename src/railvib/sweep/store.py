@@ -29,7 +29,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from railvib.errors import RailvibError
-from railvib.results.dataset import atomic_path
+from railvib.io import atomic_path, railvib_version
 from railvib.sweep.layout import SweepLayout
 
 __all__ = ["ChunkStore", "SweepMismatchError", "fingerprint"]
@@ -56,8 +56,6 @@ def fingerprint(spec: dict[str, Any]) -> str:
     str
         Hex digest.
     """
-    from railvib.solve import railvib_version
-
     files = {p: _file_hash(p) for p in sorted(_data_paths(spec))}
     blob = json.dumps(
         {"spec": spec, "files": files, "railvib": railvib_version()}, sort_keys=True, default=str
@@ -168,8 +166,6 @@ class ChunkStore:
         )
 
     def _manifest(self) -> dict[str, Any]:
-        from railvib.solve import railvib_version
-
         lay = self.layout
         return {
             "fingerprint": self.fingerprint,

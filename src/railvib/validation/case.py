@@ -233,7 +233,7 @@ def validate_case(
     frf = np.concatenate([h.vehicle, h.rail], axis=1)
     s_fin = acceleration_psd(f, np.abs(frf) ** 2 * spectrum.temporal(f, speed)[:, None])
     timings["finite_track_seconds"] = time.perf_counter() - t0
-    labels = tuple(vehicle.dofs) + tuple(f"rail@wheel{j + 1}" for j in range(h.rail.shape[1]))
+    labels = h.labels
     rel = np.abs(s_fin / s_pem - 1.0)
     coords: dict[str, tuple[str, object, dict[str, str]]] = {
         "frequency": ("frequency", f, {"units": "Hz", "long_name": "frequency"}),

@@ -24,6 +24,7 @@ from scipy.sparse.linalg import splu
 
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
+from railvib.response import FRF
 from railvib.track.periodic import Rail  # the parameter record only, not the solver
 from railvib.validation.finite_track import FiniteTrack
 from railvib.vehicle.assembly import Vehicle
@@ -31,26 +32,8 @@ from railvib.vehicle.assembly import Vehicle
 __all__ = ["FiniteCoupledSystem", "FiniteFRF", "finite_track_frf"]
 
 
-@dataclass(frozen=True, eq=False)
-class FiniteFRF:
-    """Frequency responses of the finite model per metre of irregularity.
-
-    Attributes
-    ----------
-    f : numpy.ndarray
-        Frequencies, Hz.
-    vehicle : numpy.ndarray
-        Vehicle DOF displacements, ``(n_freq, n_dof)``, m/m (rad/m for pitch).
-    rail : numpy.ndarray
-        Rail displacement under each wheel, ``(n_freq, n_wheel)``, m/m.
-    contact_force : numpy.ndarray
-        Contact force at each wheel, ``(n_freq, n_wheel)``, N/m.
-    """
-
-    f: NDArray[np.float64]
-    vehicle: NDArray[np.complex128]
-    rail: NDArray[np.complex128]
-    contact_force: NDArray[np.complex128]
+#: responses of the finite model (one container for every solver; kept under its old name)
+FiniteFRF = FRF
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,7 +199,7 @@ class FiniteCoupledSystem:
             out_v[k] = u[:nv]
             out_r[k] = u[self.rail_dofs]
             out_p[k] = self.contact_stiffness * (g @ u - r)
-        return FiniteFRF(f=f, vehicle=out_v, rail=out_r, contact_force=out_p)
+        return FRF(f=f, vehicle=out_v, rail=out_r, contact_force=out_p, dofs=v.dofs)
 
 
 def finite_track_frf(

@@ -6,13 +6,14 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
-from railvib.results import atomic_path
+from railvib.io import save_figure
+from railvib.response import rail_label
 from railvib.validation.case import ValidationResult
 
 __all__ = ["DEFAULT_PLOT_RESPONSES", "plot_overlays"]
 
 #: car body, bogie, wheelset and rail (the paper's figures)
-DEFAULT_PLOT_RESPONSES = ("carbody.bounce", "bogie1.bounce", "wheelset2.bounce", "rail@wheel1")
+DEFAULT_PLOT_RESPONSES = ("carbody.bounce", "bogie1.bounce", "wheelset2.bounce", rail_label(1))
 
 
 def plot_overlays(
@@ -63,9 +64,6 @@ def plot_overlays(
         ax.set_title(f"{resp}: FE max err {err:.1e}, PEM in MC band {frac:.0%}")
         ax.legend(fontsize=8)
         ax.grid(True, which="both", lw=0.3)
-        fig.tight_layout()
         path = out / f"{prefix}_{resp.replace('.', '_').replace('@', '_')}.png"
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=120, format="png")
-        written.append(path)
+        written.append(save_figure(fig, path))
     return written

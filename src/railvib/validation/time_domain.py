@@ -22,6 +22,7 @@ from scipy.sparse import hstack
 from scipy.sparse.linalg import splu
 
 from railvib.errors import CaseError
+from railvib.response import response_labels
 from railvib.validation.coupled import FiniteCoupledSystem
 
 __all__ = ["TimeHistory", "newmark_frequency_warp", "simulate_time_domain"]
@@ -60,9 +61,7 @@ class TimeHistory:
 def output_dofs(system: FiniteCoupledSystem) -> tuple[NDArray[np.intp], tuple[str, ...]]:
     """Global DOF indices and labels of the outputs: vehicle DOFs, then rail under the wheels."""
     nv = system.n_vehicle
-    labels = tuple(system.vehicle.dofs) + tuple(
-        f"rail@wheel{j + 1}" for j in range(system.rail_dofs.size)
-    )
+    labels = response_labels(system.vehicle.dofs, system.rail_dofs.size)
     return np.concatenate([np.arange(nv), system.rail_dofs]), labels
 
 

@@ -1,0 +1,112 @@
+"""Writing files and stamping them: atomic writes, figures, provenance.
+
+Every file railvib writes goes through :func:`atomic_path` (a temporary file next
+to the target, renamed onto it only when the writer succeeds), so a file is
+either complete or absent whatever moment a run is stopped. Every PNG goes
+through :func:`save_figure`, so figures share one resolution and are closed
+after saving.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # matplotlib is imported only by code that draws
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["FIGURE_DPI", "atomic_path", "railvib_version", "save_figure", "write_text"]
+
+#: resolution of every PNG railvib writes, dots per inch
+FIGURE_DPI = 110
+
+
+def railvib_version() -> str:
+    """Installed railvib version (``"unknown"`` when run from a source tree)."""
+    try:
+        return version("railvib")
+    except PackageNotFoundError:
+        return "unknown"
+
+
+@contextmanager
+def atomic_path(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path next to `path`; move it onto `path` only if the block succeeds.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write; its folder is created if missing.
+
+    Yields
+    ------
+    pathlib.Path
+        A temporary file in the same folder (so the final rename is atomic).
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual file mode
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def write_text(path: str | Path, text: str) -> Path:
+    """Write `text` (UTF-8) to `path` atomically and return the path."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return path
+
+
+def save_figure(
+    fig: Figure | Axes, path: str | Path, *, dpi: int = FIGURE_DPI, tight: bool = True
+) -> Path:
+    """Write `fig` as a PNG atomically, then close it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure or matplotlib.axes.Axes
+        The figure, or axes whose (top-level) figure is written.
+    path : str or pathlib.Path
+        The PNG file.
+    dpi : int
+        Resolution, dots per inch.
+    tight : bool
+        Apply ``fig.tight_layout()`` before saving.
+
+    Returns
+    -------
+    pathlib.Path
+        `path`.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    if isinstance(fig, Axes):
+        fig = fig.get_figure(root=True)  # type: ignore[assignment]
+    if not isinstance(fig, Figure):
+        raise TypeError(f"save_figure needs a matplotlib Figure or Axes, not {type(fig).__name__}")
+    if tight:
+        fig.tight_layout()
+    path = Path(path)
+    try:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, format="png")
+    finally:
+        plt.close(fig)
+    return path

@@ -1,0 +1,170 @@
+"""Per-frequency result variables: defined once, computed from one :class:`~railvib.response.FRF`.
+
+Every dataset railvib writes (one run, a sweep, a validation) takes the
+variables' dimensions, units and long names from :data:`VARIABLES` and their
+values from :func:`compute_variables`, so a new result variable is one entry
+here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from railvib import units
+from railvib.response import FRF
+
+__all__ = ["PER_FREQUENCY", "VARIABLES", "ResultVariable", "compute_variables"]
+
+_Compute = Callable[[FRF, NDArray[np.float64]], NDArray[np.generic]]
+
+
+@dataclass(frozen=True)
+class ResultVariable:
+    """One per-frequency result variable.
+
+    Parameters
+    ----------
+    name : str
+        Variable name in the dataset.
+    extra_dim : {"response", "wheel"} or None
+        The dimension after ``frequency`` (None: frequency only).
+    units : str
+        Units of the values (of the bounce responses where pitch differs; see `note`).
+    long_name : str
+        Description for plots and files.
+    note : str
+        Further explanation (e.g. the unit of pitch responses), or "".
+    compute : callable
+        ``compute(frf, irregularity_psd)`` -> values ``(..., n_freq[, n])``; leading
+        batch axes of `frf` and of the one-sided irregularity PSD (m^2/Hz,
+        ``(..., n_freq)``) are kept.
+    """
+
+    name: str
+    extra_dim: str | None
+    units: str
+    long_name: str
+    note: str
+    compute: _Compute
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """Dimensions of one case's values."""
+        return ("frequency",) if self.extra_dim is None else ("frequency", self.extra_dim)
+
+    @property
+    def attrs(self) -> dict[str, str]:
+        """``units``, ``long_name`` and (if any) ``note``."""
+        out = {"units": self.units, "long_name": self.long_name}
+        if self.note:
+            out["note"] = self.note
+        return out
+
+
+def _psd(h: NDArray[np.complex128], s_r: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``|H|^2 S_r`` with the input PSD broadcast over the last (response) axis."""
+    return np.abs(h) ** 2 * s_r[..., None]
+
+
+def _omega4(f: NDArray[np.float64]) -> NDArray[np.float64]:
+    return ((2.0 * np.pi * f) ** 4)[:, None]
+
+
+def _psd_displacement(frf: FRF, s_r: NDArray[np.float64]) -> NDArray[np.float64]:
+    return _psd(frf.displacement, s_r)
+
+
+def _psd_acceleration(frf: FRF, s_r: NDArray[np.float64]) -> NDArray[np.float64]:
+    return _psd_displacement(frf, s_r) * _omega4(frf.f)
+
+
+def _psd_force(frf: FRF, s_r: NDArray[np.float64]) -> NDArray[np.float64]:
+    return _psd(frf.contact_force, s_r)
+
+
+def _variables(*items: ResultVariable) -> dict[str, ResultVariable]:
+    return {v.name: v for v in items}
+
+
+#: every per-frequency result variable, by name
+VARIABLES: dict[str, ResultVariable] = _variables(
+    ResultVariable(
+        "psd_acceleration",
+        "response",
+        units.ACCELERATION_PSD,
+        "acceleration PSD",
+        "pitch responses are in (rad/s^2)^2/Hz",
+        _psd_acceleration,
+    ),
+    ResultVariable(
+        "psd_displacement",
+        "response",
+        units.DISPLACEMENT_PSD,
+        "displacement PSD",
+        "pitch responses are in rad^2/Hz",
+        _psd_displacement,
+    ),
+    ResultVariable(
+        "frf_displacement",
+        "response",
+        "m/m",
+        "displacement per unit irregularity (complex)",
+        "pitch responses are in rad/m; exp(+i omega t); input = profile at the leading wheel",
+        lambda frf, s_r: frf.displacement,
+    ),
+    ResultVariable(
+        "psd_force",
+        "wheel",
+        units.FORCE_PSD,
+        "dynamic wheel-rail contact force PSD",
+        "",
+        _psd_force,
+    ),
+    ResultVariable(
+        "frf_force",
+        "wheel",
+        "N/m",
+        "contact force per unit irregularity (complex)",
+        "",
+        lambda frf, s_r: frf.contact_force,
+    ),
+    ResultVariable(
+        "irregularity_psd",
+        None,
+        units.DISPLACEMENT_PSD,
+        "irregularity PSD applied",
+        "",
+        lambda frf, s_r: s_r,
+    ),
+)
+
+#: the variables a sweep may store per frequency (the real-valued ones)
+PER_FREQUENCY = ("psd_acceleration", "psd_displacement", "psd_force", "irregularity_psd")
+
+
+def compute_variables(
+    frf: FRF, irregularity_psd: NDArray[np.float64], names: Iterable[str]
+) -> dict[str, NDArray[np.generic]]:
+    """Values of the variables `names` for the responses `frf` to an irregularity.
+
+    Parameters
+    ----------
+    frf : FRF
+        Responses per metre of irregularity, optionally with leading batch axes.
+    irregularity_psd : numpy.ndarray
+        One-sided temporal irregularity PSD, m^2/Hz, ``(..., n_freq)`` with the same
+        batch axes as `frf`.
+    names : iterable of str
+        Keys of :data:`VARIABLES`.
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        Values ``(..., n_freq[, n_resp or n_wheel])`` by name.
+    """
+    s_r = np.asarray(irregularity_psd, dtype=float)
+    return {name: VARIABLES[name].compute(frf, s_r) for name in names}
