@@ -7,7 +7,7 @@ time-temperature superposition with a :class:`WLF` law). Build them from case-fi
 tables with :func:`pad_from_dict`; fit them to measurements with :func:`fit_pad`.
 """
 
-from railvib.pads.base import PadModel
+from railvib.pads.base import PADS, FitStart, PadModel
 from railvib.pads.fit import (
     FITTABLE_MODELS,
     LogLinearFit,
@@ -18,6 +18,7 @@ from railvib.pads.fit import (
     fit_log_linear,
     fit_model,
     fit_pad,
+    fittable_models,
 )
 from railvib.pads.io import (
     MODEL_ALIASES,
@@ -45,7 +46,9 @@ from railvib.pads.viscoelastic import FractionalZener, GeneralizedMaxwell
 __all__ = [
     "DEFAULT_EXPANSION_COEFFICIENT_PER_K",
     "FITTABLE_MODELS",
+    "FitStart",
     "MODEL_ALIASES",
+    "PADS",
     "PAD_MODELS",
     "UNIVERSAL_C1",
     "UNIVERSAL_C2_K",
@@ -68,6 +71,7 @@ __all__ = [
     "fit_log_linear",
     "fit_model",
     "fit_pad",
+    "fittable_models",
     "load_pad_toml",
     "pad_from_dict",
     "pad_to_dict",

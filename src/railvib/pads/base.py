@@ -5,26 +5,66 @@ pad's complex dynamic stiffness is ``K* = K' + i K''`` with ``K'' >= 0`` for a
 passive (energy-absorbing) pad. The loss factor is ``eta = K'' / K'``.
 
 A pad model implements one method, :meth:`PadModel.stiffness`; storage and loss
-stiffness, loss factor and the passivity check are derived here.
+stiffness, loss factor and the passivity check are derived here. It is a frozen
+dataclass whose fields are declared with :func:`railvib.registry.parameter` and
+registers itself in :data:`PADS` (see ``docs/extending.md``); its declared
+parameters are checked on construction, cross-parameter conditions in
+:meth:`PadModel.validate`.
 """
 
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
+from railvib.registry import Registry, check_parameters
 
-__all__ = ["PadModel"]
+__all__ = ["PADS", "FitStart", "PadModel"]
 
 
 class PadModel(ABC):
     """Complex dynamic stiffness of one railpad (one rail seat), in N/m."""
 
-    #: short name used in case files (``[track.pad] model = "..."``)
-    model_name: str = ""
+    #: short name used in case files (``[track.pad] model = "..."``), set on registration
+    model_name: ClassVar[str] = ""
+
+    def __post_init__(self) -> None:
+        check_parameters(self, "must")
+        self.validate()
+
+    def validate(self) -> None:  # noqa: B027 (a hook: most models need no extra check)
+        """Check conditions between parameters (each parameter alone is checked already).
+
+        Raises
+        ------
+        CaseError
+            Naming the parameter's key.
+        """
+
+    @classmethod
+    def fit_starts(
+        cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
+    ) -> list[FitStart] | None:
+        """Start points and bounds for fitting this model to ``K*(f)``, or None if not fittable.
+
+        Parameters
+        ----------
+        f : numpy.ndarray
+            Frequencies, Hz.
+        k : numpy.ndarray
+            Complex stiffness at `f`, N/m.
+        n_terms : int, optional
+            Number of terms of a series model.
+        f0_hz : float
+            Reference frequency of power-law models, Hz.
+        """
+        return None
 
     @property
     def temperature_dependent(self) -> bool:
@@ -86,3 +126,27 @@ class PadModel(ABC):
                 f"K*({f.ravel()[i]:g} Hz) = {k.ravel()[i]:.4g} N/m",
                 "a passive pad needs K' > 0 and K'' >= 0 at every frequency",
             )
+
+
+@dataclass(frozen=True)
+class FitStart:
+    """One start of a least-squares fit of a pad model (see :func:`railvib.pads.fit_model`).
+
+    Parameters
+    ----------
+    x0 : list of float
+        Start point of the scaled parameters (dimensionless).
+    lower, upper : list of float
+        Bounds of the scaled parameters.
+    build : callable
+        ``build(x)`` -> the pad model at scaled parameters `x`.
+    """
+
+    x0: list[float]
+    lower: list[float]
+    upper: list[float]
+    build: Callable[[NDArray[np.float64]], PadModel]
+
+
+#: every pad model a case file can name (``[track.pad] model = "..."``)
+PADS: Registry[PadModel] = Registry("pad model", PadModel, "model", style="must")

@@ -16,16 +16,15 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import least_squares, minimize_scalar
 
 from railvib.errors import CaseError
-from railvib.pads.base import PadModel
-from railvib.pads.io import MODEL_ALIASES, Measurements
-from railvib.pads.simple import ConstantPhase, Hysteretic, LogLinear, SpringDamper
+from railvib.pads.base import PADS, FitStart, PadModel
+from railvib.pads.io import Measurements
+from railvib.pads.simple import LogLinear
 from railvib.pads.tts import (
     DEFAULT_EXPANSION_COEFFICIENT_PER_K,
     WLF,
     TemperatureShifted,
     vertical_shift_factor,
 )
-from railvib.pads.viscoelastic import FractionalZener, GeneralizedMaxwell
 
 __all__ = [
     "FITTABLE_MODELS",
@@ -37,6 +36,7 @@ __all__ = [
     "fit_log_linear",
     "fit_model",
     "fit_pad",
+    "fittable_models",
 ]
 
 _F = NDArray[np.float64]
@@ -329,102 +329,31 @@ def build_master_curve(
 
 # ---------------------------------------------------------------- model fitting
 
-_Setup = tuple[list[float], list[float], list[float], Callable[[_F], PadModel]]
+
+def fittable_models() -> list[str]:
+    """Names of the registered pad models that :func:`fit_model` can fit.
+
+    A model is fittable when its class provides :meth:`PadModel.fit_starts`.
+    """
+    base = PadModel.fit_starts.__func__  # type: ignore[attr-defined]
+    return [m.name for m in PADS if m.cls.fit_starts.__func__ is not base]  # type: ignore[attr-defined]
 
 
-def _setup(
+def _fit_starts(
     name: str, f: _F, k: NDArray[np.complex128], n_terms: int | None, f0_hz: float
-) -> list[_Setup]:
-    """Return start points, bounds and builder for model `name`, scaled to the data."""
-    ks = float(np.median(k.real))
-    fm = float(np.exp(np.mean(np.log(f))))
-    wm = 2 * np.pi * fm
-    eta = float(np.median(k.imag / k.real))
-    inf = np.inf
-    if name == "spring_damper":
-        return [
-            (
-                [1.0, eta],
-                [1e-9, 0.0],
-                [inf, inf],
-                lambda x: SpringDamper(float(x[0] * ks), float(x[1] * ks / wm)),
-            )
-        ]
-    if name == "hysteretic":
-        return [
-            (
-                [1.0, eta],
-                [1e-9, 0.0],
-                [inf, inf],
-                lambda x: Hysteretic(float(x[0] * ks), float(x[1])),
-            )
-        ]
-    if name in ("log_linear", "constant_phase"):
-        slope, icpt = np.polyfit(np.log10(f / f0_hz), np.log10(np.abs(k)), 1)
-        x0 = [10**icpt / ks, float(np.clip(slope, 0.0, 0.9))]
-        if name == "constant_phase":
-            return [
-                (
-                    x0,
-                    [1e-9, 0.0],
-                    [inf, 0.999],
-                    lambda x: ConstantPhase(float(x[0] * ks), f0_hz, float(x[1])),
-                )
-            ]
-        return [
-            (
-                [*x0, eta],
-                [1e-9, 0.0, 0.0],
-                [inf, inf, inf],
-                lambda x: LogLinear(
-                    float(x[0] * ks), f0_hz, float(x[1]), float(x[2] * ks / wm), False
-                ),
-            )
-        ]
-    if name == "fractional_zener":
-        k0, kinf = float(k.real.min()), float(k.real.max())
-        f_peak = float(f[np.argmax(k.imag / k.real)])
-        lo, hi = [np.log(1e-6), np.log(1e-6), -np.inf, 0.01], [np.inf, np.inf, np.inf, 1.0]
-
-        def build(x: _F) -> PadModel:
-            k0 = float(ks * np.exp(x[0]))
-            return FractionalZener(
-                k0, k0 + float(ks * np.exp(x[1])), float(10.0 ** x[2]), float(x[3])
-            )
-
-        x0 = [
-            np.log(k0 / ks),
-            np.log(max(kinf - k0, 1e-3 * k0) / ks),
-            -np.log10(2 * np.pi * f_peak),
-        ]
-        return [([*x0, a], lo, hi, build) for a in (0.2, 0.5, 0.9)]
-    if name == "generalized_maxwell":
-        lo, hi = np.log10(f.min()) - 1.0, np.log10(f.max()) + 1.0  # spectrum beyond the band
-        n = n_terms or int(np.ceil(2 * (hi - lo))) + 1
-        fi = np.logspace(lo, hi, n) if n > 1 else np.array([fm])
-        tau = 1.0 / (2 * np.pi * fi)
-        k0 = float(k.real.min())
-        x0 = [k0 / ks] + [max(k.real.max() - k0, 1e-3 * k0) / ks / n] * n
-        return [
-            (
-                x0,
-                [1e-9] + [0.0] * n,
-                [inf] * (n + 1),
-                lambda x: GeneralizedMaxwell(float(x[0] * ks), tuple(x[1:] * ks), tuple(tau)),
-            )
-        ]
-    raise CaseError("model", name, f"one of {', '.join(FITTABLE_MODELS)}")
+) -> list[FitStart]:
+    """Start points, bounds and builder of registered model `name`, scaled to the data."""
+    fittable = fittable_models()
+    member = PADS.get(name) if name in PADS else None
+    if member is None or member.name not in fittable:
+        raise CaseError("model", name, f"one of {', '.join(fittable)}")
+    starts = member.cls.fit_starts(f, k, n_terms=n_terms, f0_hz=f0_hz)
+    assert starts is not None, "a fittable model gives its fit starts"
+    return starts
 
 
-#: Model names :func:`fit_model` can fit.
-FITTABLE_MODELS = (
-    "spring_damper",
-    "hysteretic",
-    "log_linear",
-    "constant_phase",
-    "fractional_zener",
-    "generalized_maxwell",
-)
+#: Model names :func:`fit_model` can fit (the built-in ones; see :func:`fittable_models`).
+FITTABLE_MODELS = tuple(fittable_models())
 
 
 def _residuals(
@@ -472,21 +401,23 @@ def fit_model(
     -------
     ModelFit
     """
-    name = MODEL_ALIASES.get(model, model)
+    name = model
     f = np.asarray(frequency_hz, dtype=float).ravel()
     k = np.asarray(stiffness_n_per_m, dtype=complex).ravel()
     if f.size != k.size or f.size < 2 or np.any(f <= 0) or np.any(k.real <= 0):
         raise CaseError("data", f"{f.size} points", ">= 2 points with f > 0 (Hz) and K' > 0 (N/m)")
     best = None
-    for x0, lo, hi, build in _setup(name, f, k, n_terms, f0_hz):
+    for start in _fit_starts(name, f, k, n_terms, f0_hz):
 
-        def resid(x: _F, build: Callable[[_F], PadModel] = build) -> _F:
+        def resid(x: _F, build: Callable[[_F], PadModel] = start.build) -> _F:
             return np.concatenate(_residuals(build(x), f, k, loss_weight))
 
-        start = np.clip(x0, lo, hi)
-        sol = least_squares(resid, start, bounds=(lo, hi), x_scale="jac", xtol=1e-12, ftol=1e-12)
+        x0 = np.clip(start.x0, start.lower, start.upper)
+        sol = least_squares(
+            resid, x0, bounds=(start.lower, start.upper), x_scale="jac", xtol=1e-12, ftol=1e-12
+        )
         if best is None or sol.cost < best[0].cost:
-            best = (sol, build)
+            best = (sol, start.build)
     assert best is not None, "at least one start point is always tried"
     sol, build = best
     fitted = build(sol.x)

@@ -8,9 +8,8 @@ An optional ``tts`` sub-table wraps the model in :class:`~railvib.pads.tts.Tempe
 from __future__ import annotations
 
 import csv
-import math
 import tomllib
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -20,12 +19,12 @@ import numpy as np
 import tomli_w
 from numpy.typing import NDArray
 
+import railvib.pads.simple
+import railvib.pads.tabulated
+import railvib.pads.viscoelastic  # noqa: F401  (the built-in models register on import)
 from railvib.errors import CaseError
-from railvib.pads.base import PadModel
-from railvib.pads.simple import ConstantPhase, Hysteretic, LogLinear, SpringDamper
-from railvib.pads.tabulated import TabulatedPad
-from railvib.pads.tts import DEFAULT_EXPANSION_COEFFICIENT_PER_K, WLF, TemperatureShifted
-from railvib.pads.viscoelastic import FractionalZener, GeneralizedMaxwell
+from railvib.pads.base import PADS, PadModel
+from railvib.pads.tts import TemperatureShifted, tts_to_dict
 
 __all__ = [
     "MODEL_ALIASES",
@@ -39,138 +38,10 @@ __all__ = [
     "wj7_example_csv",
 ]
 
-_FLOAT, _BOOL = "number", "boolean"
-
-
-@dataclass(frozen=True)
-class _Spec:
-    cls: Callable[..., PadModel]
-    #: dict key -> (constructor argument, kind, default or ... when required)
-    keys: dict[str, tuple[str, str, Any]]
-
-
-_REQUIRED = ...
-
-#: Every pad model that ``pad_from_dict`` builds, by its ``model`` name.
-PAD_MODELS: dict[str, _Spec] = {
-    "spring_damper": _Spec(
-        SpringDamper,
-        {
-            "stiffness_n_per_m": ("stiffness_n_per_m", _FLOAT, _REQUIRED),
-            "damping_ns_per_m": ("damping_ns_per_m", _FLOAT, 0.0),
-        },
-    ),
-    "hysteretic": _Spec(
-        Hysteretic,
-        {
-            "stiffness_n_per_m": ("stiffness_n_per_m", _FLOAT, _REQUIRED),
-            "loss_factor": ("loss_factor_", _FLOAT, _REQUIRED),
-        },
-    ),
-    "log_linear": _Spec(
-        LogLinear,
-        {
-            "k0_n_per_m": ("k0_n_per_m", _FLOAT, _REQUIRED),
-            "f0_hz": ("f0_hz", _FLOAT, 5.0),
-            "exponent": ("exponent", _FLOAT, 0.07),
-            "damping_ns_per_m": ("damping_ns_per_m", _FLOAT, 0.0),
-            "hold_below_f0": ("hold_below_f0", _BOOL, True),
-        },
-    ),
-    "constant_phase": _Spec(
-        ConstantPhase,
-        {
-            "k0_n_per_m": ("k0_n_per_m", _FLOAT, _REQUIRED),
-            "f0_hz": ("f0_hz", _FLOAT, 5.0),
-            "exponent": ("exponent", _FLOAT, 0.07),
-        },
-    ),
-    "fractional_zener": _Spec(
-        FractionalZener,
-        {
-            "k0_n_per_m": ("k0_n_per_m", _FLOAT, _REQUIRED),
-            "k_inf_n_per_m": ("k_inf_n_per_m", _FLOAT, _REQUIRED),
-            "tau_s": ("tau_s", _FLOAT, _REQUIRED),
-            "alpha": ("alpha", _FLOAT, _REQUIRED),
-        },
-    ),
-    "generalized_maxwell": _Spec(
-        GeneralizedMaxwell,
-        {
-            "k_inf_n_per_m": ("k_inf_n_per_m", _FLOAT, _REQUIRED),
-            "k_n_per_m": ("k_n_per_m", _FLOAT + "s", _REQUIRED),
-            "tau_s": ("tau_s", _FLOAT + "s", _REQUIRED),
-        },
-    ),
-    "tabulated": _Spec(
-        TabulatedPad,
-        {
-            "frequency_hz": ("frequency_hz", _FLOAT + "s", _REQUIRED),
-            "storage_n_per_m": ("storage_n_per_m", _FLOAT + "s", _REQUIRED),
-            "loss_n_per_m": ("loss_n_per_m", _FLOAT + "s", _REQUIRED),
-        },
-    ),
-}
-
-#: Other accepted spellings of model names.
-MODEL_ALIASES = {"zener": "fractional_zener", "prony": "generalized_maxwell"}
-
-_TTS_KEYS: dict[str, tuple[str, Any]] = {
-    "reference_temperature_c": (_FLOAT, _REQUIRED),
-    "glass_transition_c": (_FLOAT, None),
-    "c1": (_FLOAT, None),
-    "c2_k": (_FLOAT, None),
-    "wlf_reference_temperature_c": (_FLOAT, None),
-    "vertical_shift": (_BOOL, True),
-    "expansion_coefficient_per_k": (_FLOAT, DEFAULT_EXPANSION_COEFFICIENT_PER_K),
-}
-
-
-def _value(field: str, value: Any, kind: str) -> Any:
-    """Check the type of one dict value and convert it."""
-    if kind == _BOOL:
-        if not isinstance(value, bool):
-            raise CaseError(field, value, "must be true or false")
-        return value
-    if kind == _FLOAT:
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, int | float)
-            or not math.isfinite(value)
-        ):
-            raise CaseError(field, value, "must be a finite number")
-        return float(value)
-    if isinstance(value, str) or not isinstance(value, list | tuple):
-        raise CaseError(field, value, "must be a list of finite numbers")
-    return tuple(_value(f"{field}[{i}]", v, _FLOAT) for i, v in enumerate(value))
-
-
-def _take(d: Mapping[str, Any], keys: Mapping[str, Any], field: str) -> dict[str, Any]:
-    """Values of `keys` from `d` (kind, default) with unknown/missing/type checks."""
-    unknown = sorted(set(d) - set(keys))
-    if unknown:
-        raise CaseError(
-            f"{field}.{unknown[0]}", d[unknown[0]], f"unknown key; allowed: {', '.join(keys)}"
-        )
-    out = {}
-    for key, (kind, default) in keys.items():
-        if key in d:
-            out[key] = _value(f"{field}.{key}", d[key], kind)
-        elif default is _REQUIRED:
-            raise CaseError(f"{field}.{key}", None, f"missing; required ({kind})")
-        else:
-            out[key] = default
-    return out
-
-
-def _relabel(err: CaseError, field: str, keys: Mapping[str, Any]) -> CaseError:
-    """Rename ``track.pad.<name>`` in a model's validation error to ``<field>.<dict key>``."""
-    name = err.field.removeprefix("track.pad.")
-    base, _, index = name.partition("[")
-    if base not in keys:
-        base = next((k for k in keys if k.startswith(base)), base)
-    new = f"{field}.{base}" + (f"[{index}" if index else "")
-    return CaseError(new, err.value, err.allowed)
+#: Every pad model ``pad_from_dict`` builds, by its ``model`` name (a live view of PADS).
+PAD_MODELS = PADS.as_mapping()
+#: Other accepted spellings of model names (a live view).
+MODEL_ALIASES = PADS.aliases_mapping()
 
 
 def pad_from_dict(d: Mapping[str, Any], field: str = "track.pad") -> PadModel:
@@ -180,8 +51,9 @@ def pad_from_dict(d: Mapping[str, Any], field: str = "track.pad") -> PadModel:
     ----------
     d : mapping
         ``{"model": name, <parameter keys>, "tts": {...} (optional)}``. Names and keys
-        are listed in :data:`PAD_MODELS` (``zener`` and ``prony`` are accepted aliases).
-        The ``tts`` table holds ``reference_temperature_c`` (degC, required), then either
+        are those of the registered models (``railvib models pad``; ``zener`` and
+        ``prony`` are aliases). The ``tts`` table (:data:`railvib.pads.tts.TTS_PARAMETERS`)
+        holds ``reference_temperature_c`` (degC, required), then either
         ``glass_transition_c`` (universal WLF constants at Tg, degC) or ``c1`` and
         ``c2_k`` (K) with optional ``wlf_reference_temperature_c`` (degC, default the
         reference temperature), and optionally ``vertical_shift`` (bool, default true)
@@ -198,67 +70,7 @@ def pad_from_dict(d: Mapping[str, Any], field: str = "track.pad") -> PadModel:
     CaseError
         Unknown model name, unknown or missing key, wrong type or a non-physical value.
     """
-    if not isinstance(d, Mapping):
-        raise CaseError(field, d, "a table with a 'model' key")
-    if "model" not in d:
-        raise CaseError(f"{field}.model", None, f"missing; one of {', '.join(PAD_MODELS)}")
-    name = d["model"]
-    name = MODEL_ALIASES.get(name, name) if isinstance(name, str) else name
-    if name not in PAD_MODELS:
-        raise CaseError(
-            f"{field}.model", d["model"], f"one of {', '.join([*PAD_MODELS, *MODEL_ALIASES])}"
-        )
-    spec = PAD_MODELS[name]
-    params = {k: v for k, v in d.items() if k not in ("model", "tts")}
-    values = _take(
-        params, {k: (kind, default) for k, (_, kind, default) in spec.keys.items()}, field
-    )
-    try:
-        model = spec.cls(**{spec.keys[k][0]: v for k, v in values.items()})
-    except CaseError as err:
-        raise _relabel(err, field, spec.keys) from None
-    if "tts" in d:
-        model = _tts_from_dict(model, d["tts"], f"{field}.tts")
-    return model
-
-
-def _tts_from_dict(base: PadModel, d: Any, field: str) -> TemperatureShifted:
-    if not isinstance(d, Mapping):
-        raise CaseError(field, d, "a table")
-    v = _take(d, _TTS_KEYS, field)
-    t_ref = v["reference_temperature_c"]
-    has_c = v["c1"] is not None or v["c2_k"] is not None
-    if (v["glass_transition_c"] is None) == (not has_c):
-        raise CaseError(
-            field,
-            dict(d),
-            "give either glass_transition_c (degC) or both c1 and c2_k (K), not both",
-        )
-    try:
-        if has_c:
-            for key in ("c1", "c2_k"):
-                if v[key] is None:
-                    raise CaseError(f"{field}.{key}", None, "missing; c1 and c2_k go together")
-            t_wlf = v["wlf_reference_temperature_c"]
-            wlf = WLF(v["c1"], v["c2_k"], t_ref if t_wlf is None else t_wlf)
-        else:
-            if v["wlf_reference_temperature_c"] is not None:
-                raise CaseError(
-                    f"{field}.wlf_reference_temperature_c",
-                    v["wlf_reference_temperature_c"],
-                    "only with c1 and c2_k (glass_transition_c is the WLF reference)",
-                )
-            wlf = WLF.universal(v["glass_transition_c"])
-        return TemperatureShifted(
-            base, wlf, t_ref, v["vertical_shift"], v["expansion_coefficient_per_k"]
-        )
-    except CaseError as err:
-        if err.field.startswith(field):
-            raise
-        key = err.field.rpartition(".")[2]
-        if key == "reference_temperature_c" and err.field.startswith("wlf"):
-            key = "wlf_reference_temperature_c"
-        raise CaseError(f"{field}.{key}", err.value, err.allowed) from None
+    return PADS.from_dict(d, field)
 
 
 def pad_to_dict(model: PadModel) -> dict[str, Any]:
@@ -267,8 +79,7 @@ def pad_to_dict(model: PadModel) -> dict[str, Any]:
     Parameters
     ----------
     model : PadModel
-        One of the models in :data:`PAD_MODELS`, optionally wrapped in
-        :class:`~railvib.pads.tts.TemperatureShifted`.
+        A registered model, optionally wrapped in :class:`~railvib.pads.tts.TemperatureShifted`.
 
     Returns
     -------
@@ -276,28 +87,11 @@ def pad_to_dict(model: PadModel) -> dict[str, Any]:
         TOML-ready (floats, booleans, lists of floats and one nested ``tts`` table).
     """
     if isinstance(model, TemperatureShifted):
-        shifted = pad_to_dict(model.base)
-        shifted["tts"] = {
-            "reference_temperature_c": float(model.reference_temperature_c),
-            "c1": float(model.wlf.c1),
-            "c2_k": float(model.wlf.c2_k),
-            "wlf_reference_temperature_c": float(model.wlf.reference_temperature_c),
-            "vertical_shift": bool(model.vertical_shift),
-            "expansion_coefficient_per_k": float(model.expansion_coefficient_per_k),
-        }
-        return shifted
-    name = model.model_name
-    if name not in PAD_MODELS or not isinstance(model, PAD_MODELS[name].cls):  # type: ignore[arg-type]
-        raise CaseError("track.pad.model", type(model).__name__, f"one of {', '.join(PAD_MODELS)}")
-    out: dict[str, Any] = {"model": name}
-    for key, (attr, kind, _) in PAD_MODELS[name].keys.items():
-        value = getattr(model, attr)
-        out[key] = (
-            [float(x) for x in value]
-            if kind == _FLOAT + "s"
-            else (bool(value) if kind == _BOOL else float(value))
-        )
-    return out
+        return {**PADS.to_dict(model.base), "tts": tts_to_dict(model)}
+    try:
+        return PADS.to_dict(model)
+    except CaseError as err:
+        raise CaseError("track.pad.model", err.value, err.allowed) from None
 
 
 def pad_toml(model: PadModel, table: str = "track.pad", header: str = "") -> str:

@@ -1,4 +1,4 @@
-"""Simple railpad models: spring-damper, hysteretic and the paper's log-linear law."""
+"""Simple railpad models: spring-damper, hysteretic, the paper's log-linear law, constant phase."""
 
 from __future__ import annotations
 
@@ -7,22 +7,31 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
-from railvib.pads.base import PadModel
+from railvib.pads.base import PADS, FitStart, PadModel
+from railvib.registry import parameter
 
 __all__ = ["ConstantPhase", "Hysteretic", "LogLinear", "SpringDamper"]
 
-
-def _positive(name: str, value: float, unit: str) -> None:
-    if not (np.isfinite(value) and value > 0):
-        raise CaseError(name, value, f"must be > 0 ({unit})")
+_K_TYPICAL = (1e7, 1e9)  # N/m: soft to stiff railpads
+_C_TYPICAL = (1e3, 2e5)  # N s/m
 
 
-def _non_negative(name: str, value: float, unit: str) -> None:
-    if not (np.isfinite(value) and value >= 0):
-        raise CaseError(name, value, f"must be >= 0 ({unit})")
+def _scales(f: NDArray[np.float64], k: NDArray[np.complex128]) -> tuple[float, float, float]:
+    """Median storage stiffness (N/m), geometric-mean circular frequency (rad/s), loss factor."""
+    ks = float(np.median(k.real))
+    wm = 2 * np.pi * float(np.exp(np.mean(np.log(f))))
+    return ks, wm, float(np.median(k.imag / k.real))
 
 
+def _power_law_start(
+    f: NDArray[np.float64], k: NDArray[np.complex128], f0_hz: float, ks: float
+) -> list[float]:
+    """Start ``[K0 / ks, kappa]`` from a straight line through ``log|K*|`` against ``log f``."""
+    slope, icpt = np.polyfit(np.log10(f / f0_hz), np.log10(np.abs(k)), 1)
+    return [10**icpt / ks, float(np.clip(slope, 0.0, 0.9))]
+
+
+@PADS.register("spring_damper")
 @dataclass(frozen=True)
 class SpringDamper(PadModel):
     """Kelvin-Voigt pad: ``K* = k + i omega c`` (the paper's Table 2 model).
@@ -35,20 +44,35 @@ class SpringDamper(PadModel):
         Viscous damping c in N s/m (>= 0).
     """
 
-    stiffness_n_per_m: float
-    damping_ns_per_m: float = 0.0
-    model_name = "spring_damper"
-
-    def __post_init__(self) -> None:
-        _positive("track.pad.stiffness", self.stiffness_n_per_m, "N/m")
-        _non_negative("track.pad.damping", self.damping_ns_per_m, "N s/m")
+    stiffness_n_per_m: float = parameter(
+        "N/m", "spring stiffness k", gt=0.0, typical=_K_TYPICAL, log=True
+    )
+    damping_ns_per_m: float = parameter(
+        "N s/m", "viscous damping c", default=0.0, ge=0.0, typical=_C_TYPICAL, log=True
+    )
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``k + i 2 pi f c`` in N/m."""
         f = np.asarray(f, dtype=float)
         return self.stiffness_n_per_m + 2j * np.pi * f * self.damping_ns_per_m
 
+    @classmethod
+    def fit_starts(
+        cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
+    ) -> list[FitStart]:
+        """Start at the median stiffness and loss factor of the data."""
+        ks, wm, eta = _scales(f, k)
+        return [
+            FitStart(
+                [1.0, eta],
+                [1e-9, 0.0],
+                [np.inf, np.inf],
+                lambda x: SpringDamper(float(x[0] * ks), float(x[1] * ks / wm)),
+            )
+        ]
 
+
+@PADS.register("hysteretic")
 @dataclass(frozen=True)
 class Hysteretic(PadModel):
     """Constant loss factor pad: ``K* = k (1 + i eta)``.
@@ -58,23 +82,42 @@ class Hysteretic(PadModel):
     stiffness_n_per_m : float
         Storage stiffness k in N/m (> 0).
     loss_factor_ : float
-        Loss factor eta (>= 0), frequency-independent.
+        Loss factor eta (>= 0), frequency-independent (key ``loss_factor`` in tables).
     """
 
-    stiffness_n_per_m: float
-    loss_factor_: float
-    model_name = "hysteretic"
-
-    def __post_init__(self) -> None:
-        _positive("track.pad.stiffness", self.stiffness_n_per_m, "N/m")
-        _non_negative("track.pad.loss_factor", self.loss_factor_, "dimensionless")
+    stiffness_n_per_m: float = parameter(
+        "N/m", "storage stiffness k", gt=0.0, typical=_K_TYPICAL, log=True
+    )
+    loss_factor_: float = parameter(
+        "-",
+        "loss factor eta, frequency-independent",
+        key="loss_factor",
+        ge=0.0,
+        typical=(0.02, 0.6),
+    )
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``k (1 + i eta)`` in N/m, broadcast to the shape of `f`."""
         f = np.asarray(f, dtype=float)
         return np.full(f.shape, self.stiffness_n_per_m * (1.0 + 1j * self.loss_factor_))
 
+    @classmethod
+    def fit_starts(
+        cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
+    ) -> list[FitStart]:
+        """Start at the median stiffness and loss factor of the data."""
+        ks, _, eta = _scales(f, k)
+        return [
+            FitStart(
+                [1.0, eta],
+                [1e-9, 0.0],
+                [np.inf, np.inf],
+                lambda x: Hysteretic(float(x[0] * ks), float(x[1])),
+            )
+        ]
 
+
+@PADS.register("log_linear")
 @dataclass(frozen=True)
 class LogLinear(PadModel):
     """The paper's frequency-dependent pad: ``K'(f) = K0 (f / f0)^kappa`` plus viscous damping.
@@ -98,18 +141,19 @@ class LogLinear(PadModel):
         Hold ``K' = K0`` for ``f < f0``.
     """
 
-    k0_n_per_m: float
-    f0_hz: float = 5.0
-    exponent: float = 0.07
-    damping_ns_per_m: float = 0.0
-    hold_below_f0: bool = True
-    model_name = "log_linear"
-
-    def __post_init__(self) -> None:
-        _positive("track.pad.k0", self.k0_n_per_m, "N/m")
-        _positive("track.pad.f0", self.f0_hz, "Hz")
-        _non_negative("track.pad.exponent", self.exponent, "dimensionless")
-        _non_negative("track.pad.damping", self.damping_ns_per_m, "N s/m")
+    k0_n_per_m: float = parameter(
+        "N/m", "initial stiffness K0 at f0", gt=0.0, typical=_K_TYPICAL, log=True
+    )
+    f0_hz: float = parameter(
+        "Hz", "reference frequency f0", default=5.0, gt=0.0, typical=(1.0, 10.0)
+    )
+    exponent: float = parameter(
+        "-", "log-log slope kappa of K' against f", default=0.07, ge=0.0, typical=(0.0, 0.2)
+    )
+    damping_ns_per_m: float = parameter(
+        "N s/m", "viscous damping c", default=0.0, ge=0.0, typical=_C_TYPICAL, log=True
+    )
+    hold_below_f0: bool = parameter("", "hold K' = K0 below f0", default=True)
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``K0 (f/f0)^kappa + i 2 pi f c`` in N/m."""
@@ -117,7 +161,25 @@ class LogLinear(PadModel):
         ratio = np.maximum(f / self.f0_hz, 1.0) if self.hold_below_f0 else f / self.f0_hz
         return self.k0_n_per_m * ratio**self.exponent + 2j * np.pi * f * self.damping_ns_per_m
 
+    @classmethod
+    def fit_starts(
+        cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
+    ) -> list[FitStart]:
+        """Start from the log-log line through ``|K*|``; fitted without the hold below f0."""
+        ks, wm, eta = _scales(f, k)
+        return [
+            FitStart(
+                [*_power_law_start(f, k, f0_hz, ks), eta],
+                [1e-9, 0.0, 0.0],
+                [np.inf, np.inf, np.inf],
+                lambda x: LogLinear(
+                    float(x[0] * ks), f0_hz, float(x[1]), float(x[2] * ks / wm), False
+                ),
+            )
+        ]
 
+
+@PADS.register("constant_phase")
 @dataclass(frozen=True)
 class ConstantPhase(PadModel):
     """Causal power-law pad ``K* = K0 (i f / f0)^kappa`` (Kramers-Kronig partner of LogLinear).
@@ -134,18 +196,30 @@ class ConstantPhase(PadModel):
         kappa, 0 <= kappa < 1.
     """
 
-    k0_n_per_m: float
-    f0_hz: float = 5.0
-    exponent: float = 0.07
-    model_name = "constant_phase"
-
-    def __post_init__(self) -> None:
-        _positive("track.pad.k0", self.k0_n_per_m, "N/m")
-        _positive("track.pad.f0", self.f0_hz, "Hz")
-        if not (0.0 <= self.exponent < 1.0):
-            raise CaseError("track.pad.exponent", self.exponent, "must be in [0, 1)")
+    k0_n_per_m: float = parameter("N/m", "modulus |K*| at f0", gt=0.0, typical=_K_TYPICAL, log=True)
+    f0_hz: float = parameter(
+        "Hz", "reference frequency f0", default=5.0, gt=0.0, typical=(1.0, 10.0)
+    )
+    exponent: float = parameter(
+        "-", "log-log slope kappa of |K*|", default=0.07, ge=0.0, lt=1.0, typical=(0.0, 0.2)
+    )
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``K0 (i f / f0)^kappa`` in N/m."""
         f = np.asarray(f, dtype=float)
         return self.k0_n_per_m * (1j * f / self.f0_hz) ** self.exponent
+
+    @classmethod
+    def fit_starts(
+        cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
+    ) -> list[FitStart]:
+        """Start from the log-log line through ``|K*|``."""
+        ks = _scales(f, k)[0]
+        return [
+            FitStart(
+                _power_law_start(f, k, f0_hz, ks),
+                [1e-9, 0.0],
+                [np.inf, 0.999],
+                lambda x: ConstantPhase(float(x[0] * ks), f0_hz, float(x[1])),
+            )
+        ]

@@ -8,11 +8,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
-from railvib.pads.base import PadModel
+from railvib.pads.base import PADS, PadModel
+from railvib.registry import parameter
 
 __all__ = ["TabulatedPad"]
 
 
+@PADS.register("tabulated")
 @dataclass(frozen=True)
 class TabulatedPad(PadModel):
     """Pad stiffness tabulated against frequency, interpolated linearly in log-frequency.
@@ -31,33 +33,28 @@ class TabulatedPad(PadModel):
         Loss stiffness K'' at each frequency, N/m (>= 0).
     """
 
-    frequency_hz: tuple[float, ...]
-    storage_n_per_m: tuple[float, ...]
-    loss_n_per_m: tuple[float, ...]
-    model_name = "tabulated"
+    frequency_hz: tuple[float, ...] = parameter(
+        "Hz", "frequencies, strictly increasing, at least 2", gt=0.0
+    )
+    storage_n_per_m: tuple[float, ...] = parameter(
+        "N/m", "storage stiffness K' at each frequency", gt=0.0
+    )
+    loss_n_per_m: tuple[float, ...] = parameter(
+        "N/m", "loss stiffness K'' at each frequency", ge=0.0
+    )
 
-    def __post_init__(self) -> None:
-        f = np.atleast_1d(np.asarray(self.frequency_hz, dtype=float))
-        k1 = np.atleast_1d(np.asarray(self.storage_n_per_m, dtype=float))
-        k2 = np.atleast_1d(np.asarray(self.loss_n_per_m, dtype=float))
-        if f.size < 2 or k1.size != f.size or k2.size != f.size:
+    def validate(self) -> None:
+        """At least 2 rows of equal length, strictly increasing frequencies."""
+        f = np.asarray(self.frequency_hz)
+        n1, n2 = len(self.storage_n_per_m), len(self.loss_n_per_m)
+        if f.size < 2 or n1 != f.size or n2 != f.size:
             raise CaseError(
-                "track.pad.frequency_hz",
-                f"{f.size} frequencies, {k1.size} storage, {k2.size} loss values",
+                "frequency_hz",
+                f"{f.size} frequencies, {n1} storage, {n2} loss values",
                 "at least 2 rows and equal lengths",
             )
-        if not np.all(np.isfinite(f) & (f > 0)) or np.any(np.diff(f) <= 0):
-            raise CaseError(
-                "track.pad.frequency_hz", list(f), "finite, > 0, strictly increasing (Hz)"
-            )
-        if not np.all(np.isfinite(k1) & (k1 > 0)):
-            raise CaseError(
-                "track.pad.storage_n_per_m", list(k1), "every value finite and > 0 (N/m)"
-            )
-        if not np.all(np.isfinite(k2) & (k2 >= 0)):
-            raise CaseError("track.pad.loss_n_per_m", list(k2), "every value finite and >= 0 (N/m)")
-        for name, arr in (("frequency_hz", f), ("storage_n_per_m", k1), ("loss_n_per_m", k2)):
-            object.__setattr__(self, name, tuple(float(v) for v in arr))
+        if np.any(np.diff(f) <= 0):
+            raise CaseError("frequency_hz", list(f), "finite, > 0, strictly increasing (Hz)")
 
     @classmethod
     def from_model(

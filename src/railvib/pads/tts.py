@@ -13,13 +13,16 @@ Seed paper, section 3.2.1, Eqs. 20-26 (Eq. 20/21 and Eq. 23 as corrected in
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
-from railvib.pads.base import PadModel
+from railvib.pads.base import PADS, PadModel
+from railvib.registry import Parameter, take_table
 from railvib.units import celsius_to_kelvin
 
 __all__ = [
@@ -27,7 +30,9 @@ __all__ = [
     "UNIVERSAL_C1",
     "UNIVERSAL_C2_K",
     "WLF",
+    "TTS_PARAMETERS",
     "TemperatureShifted",
+    "tts_from_dict",
     "vertical_shift_factor",
 ]
 
@@ -284,3 +289,114 @@ class TemperatureShifted(PadModel):
             return self.base.stiffness(f)
         a_t, v = self.shift(float(temperature))
         return v * self.base.stiffness(f * a_t)
+
+
+#: keys of a pad's optional ``[... .tts]`` table (time-temperature superposition)
+TTS_PARAMETERS: tuple[Parameter, ...] = (
+    Parameter(
+        "reference_temperature_c", "degC", "temperature at which the pad model describes the pad"
+    ),
+    Parameter(
+        "glass_transition_c",
+        "degC",
+        "glass transition Tg: universal WLF constants C1 = 17.44, C2 = 51.6 K at Tg",
+        default=None,
+    ),
+    Parameter("c1", "-", "WLF C1 (with c2_k)", default=None),
+    Parameter("c2_k", "K", "WLF C2 (with c1)", default=None),
+    Parameter(
+        "wlf_reference_temperature_c",
+        "degC",
+        "temperature at which c1 and c2_k apply (default: reference_temperature_c)",
+        default=None,
+    ),
+    Parameter(
+        "vertical_shift",
+        "",
+        "apply the density-temperature factor rho T/(rho0 T0)",
+        "boolean",
+        True,
+    ),
+    Parameter(
+        "expansion_coefficient_per_k",
+        "1/K",
+        "volume expansion coefficient a_f of the vertical factor",
+        default=DEFAULT_EXPANSION_COEFFICIENT_PER_K,
+    ),
+)
+
+
+def tts_from_dict(base: PadModel, d: Any, field: str) -> TemperatureShifted:
+    """Wrap `base` in :class:`TemperatureShifted` as a pad's ``tts`` table `d` describes.
+
+    Parameters
+    ----------
+    base : PadModel
+        The master-curve model at the reference temperature.
+    d : mapping
+        The ``tts`` table; keys :data:`TTS_PARAMETERS`: ``reference_temperature_c``
+        (degC, required), then either ``glass_transition_c`` (degC) or both ``c1`` and
+        ``c2_k`` (K) with optional ``wlf_reference_temperature_c`` (degC).
+    field : str
+        Dotted name of the table (``"track.pad.tts"``), used in errors.
+
+    Returns
+    -------
+    TemperatureShifted
+    """
+    v = take_table(d, TTS_PARAMETERS, field)
+    t_ref = v["reference_temperature_c"]
+    has_c = v["c1"] is not None or v["c2_k"] is not None
+    if (v["glass_transition_c"] is None) == (not has_c):
+        raise CaseError(
+            field,
+            dict(d) if isinstance(d, Mapping) else d,
+            "give either glass_transition_c (degC) or both c1 and c2_k (K), not both",
+        )
+    try:
+        return TemperatureShifted(
+            base,
+            _wlf(v, t_ref, field),
+            t_ref,
+            v["vertical_shift"],
+            v["expansion_coefficient_per_k"],
+        )
+    except CaseError as err:
+        if err.field.startswith(field):
+            raise
+        key = err.field.rpartition(".")[2]
+        if key == "reference_temperature_c" and err.field.startswith("wlf"):
+            key = "wlf_reference_temperature_c"
+        raise CaseError(f"{field}.{key}", err.value, err.allowed) from None
+
+
+def _wlf(v: dict[str, Any], t_ref: float, field: str) -> WLF:
+    """The WLF law of a checked ``tts`` table."""
+    if v["c1"] is not None or v["c2_k"] is not None:
+        for key in ("c1", "c2_k"):
+            if v[key] is None:
+                raise CaseError(f"{field}.{key}", None, "missing; c1 and c2_k go together")
+        t_wlf = v["wlf_reference_temperature_c"]
+        return WLF(v["c1"], v["c2_k"], t_ref if t_wlf is None else t_wlf)
+    if v["wlf_reference_temperature_c"] is not None:
+        raise CaseError(
+            f"{field}.wlf_reference_temperature_c",
+            v["wlf_reference_temperature_c"],
+            "only with c1 and c2_k (glass_transition_c is the WLF reference)",
+        )
+    return WLF.universal(v["glass_transition_c"])
+
+
+def tts_to_dict(model: TemperatureShifted) -> dict[str, Any]:
+    """The ``tts`` table of `model` (WLF constants written about their own reference)."""
+    return {
+        "reference_temperature_c": float(model.reference_temperature_c),
+        "c1": float(model.wlf.c1),
+        "c2_k": float(model.wlf.c2_k),
+        "wlf_reference_temperature_c": float(model.wlf.reference_temperature_c),
+        "vertical_shift": bool(model.vertical_shift),
+        "expansion_coefficient_per_k": float(model.expansion_coefficient_per_k),
+    }
+
+
+PADS.extra_tables["tts"] = (TTS_PARAMETERS, tts_from_dict)

@@ -12,16 +12,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
-from railvib.pads.base import PadModel
+from railvib.pads.base import PADS, FitStart, PadModel
+from railvib.registry import parameter
 
 __all__ = ["FractionalZener", "GeneralizedMaxwell"]
 
 
-def _check(field: str, value: float, ok: bool, allowed: str) -> None:
-    if not (np.isfinite(value) and ok):
-        raise CaseError(field, value, allowed)
-
-
+@PADS.register("fractional_zener", aliases=("zener",))
 @dataclass(frozen=True)
 class FractionalZener(PadModel):
     """Fractional-derivative standard linear solid (Fenander 1997/1998).
@@ -44,23 +41,35 @@ class FractionalZener(PadModel):
         Fractional order, 0 < alpha <= 1 (dimensionless).
     """
 
-    k0_n_per_m: float
-    k_inf_n_per_m: float
-    tau_s: float
-    alpha: float
-    model_name = "fractional_zener"
+    k0_n_per_m: float = parameter(
+        "N/m", "relaxed (low-frequency) stiffness K0", gt=0.0, typical=(1e7, 1e8), log=True
+    )
+    k_inf_n_per_m: float = parameter(
+        "N/m",
+        "unrelaxed (high-frequency) stiffness K_inf, >= K0",
+        gt=0.0,
+        typical=(1e8, 1e9),
+        log=True,
+    )
+    tau_s: float = parameter("s", "relaxation time tau", gt=0.0, typical=(1e-6, 1e-2), log=True)
+    alpha: float = parameter(
+        "-",
+        "fractional order",
+        gt=0.0,
+        le=1.0,
+        allowed="must be in (0, 1]",
+        typical=(0.1, 1.0),
+    )
 
-    def __post_init__(self) -> None:
-        _check("track.pad.k0_n_per_m", self.k0_n_per_m, self.k0_n_per_m > 0, "must be > 0 (N/m)")
-        _check(
-            "track.pad.k_inf_n_per_m",
-            self.k_inf_n_per_m,
-            self.k_inf_n_per_m >= self.k0_n_per_m,
-            f"must be >= k0_n_per_m = {self.k0_n_per_m:.4g} (N/m), otherwise the loss "
-            "factor is negative",
-        )
-        _check("track.pad.tau_s", self.tau_s, self.tau_s > 0, "must be > 0 (s)")
-        _check("track.pad.alpha", self.alpha, 0 < self.alpha <= 1, "must be in (0, 1]")
+    def validate(self) -> None:
+        """K_inf >= K0: a non-negative loss factor at every frequency."""
+        if self.k_inf_n_per_m < self.k0_n_per_m:
+            raise CaseError(
+                "k_inf_n_per_m",
+                self.k_inf_n_per_m,
+                f"must be >= k0_n_per_m = {self.k0_n_per_m:.4g} (N/m), otherwise the loss "
+                "factor is negative",
+            )
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``K0 + (K_inf - K0) z / (1 + z)``, ``z = (i 2 pi f tau)^alpha``, in N/m."""
@@ -70,6 +79,7 @@ class FractionalZener(PadModel):
         return self.k0_n_per_m + (self.k_inf_n_per_m - self.k0_n_per_m) * (z / (1.0 + z))
 
 
+@PADS.register("generalized_maxwell", aliases=("prony",))
 @dataclass(frozen=True)
 class GeneralizedMaxwell(PadModel):
     """Generalised Maxwell pad (Prony series; Oregui et al. 2017).
@@ -87,31 +97,18 @@ class GeneralizedMaxwell(PadModel):
         Branch relaxation times tau_i, s (each > 0), same length as `k_n_per_m`.
     """
 
-    k_inf_n_per_m: float
-    k_n_per_m: tuple[float, ...]
-    tau_s: tuple[float, ...]
-    model_name = "generalized_maxwell"
+    k_inf_n_per_m: float = parameter("N/m", "equilibrium (zero-frequency) stiffness", gt=0.0)
+    k_n_per_m: tuple[float, ...] = parameter("N/m", "branch stiffnesses K_i", ge=0.0)
+    tau_s: tuple[float, ...] = parameter("s", "branch relaxation times tau_i", gt=0.0)
 
-    def __post_init__(self) -> None:
-        k = tuple(float(x) for x in np.atleast_1d(np.asarray(self.k_n_per_m, dtype=float)))
-        tau = tuple(float(x) for x in np.atleast_1d(np.asarray(self.tau_s, dtype=float)))
-        object.__setattr__(self, "k_n_per_m", k)
-        object.__setattr__(self, "tau_s", tau)
-        _check(
-            "track.pad.k_inf_n_per_m",
-            self.k_inf_n_per_m,
-            self.k_inf_n_per_m > 0,
-            "must be > 0 (N/m)",
-        )
-        if len(k) == 0 or len(k) != len(tau):
+    def validate(self) -> None:
+        """One relaxation time per branch stiffness, at least one branch."""
+        if len(self.k_n_per_m) == 0 or len(self.k_n_per_m) != len(self.tau_s):
             raise CaseError(
-                "track.pad.tau_s",
-                f"{len(tau)} values for {len(k)} stiffnesses",
+                "tau_s",
+                f"{len(self.tau_s)} values for {len(self.k_n_per_m)} stiffnesses",
                 "one relaxation time per branch stiffness, at least one branch",
             )
-        for i, (ki, ti) in enumerate(zip(k, tau, strict=True)):
-            _check(f"track.pad.k_n_per_m[{i}]", ki, ki >= 0, "must be >= 0 (N/m)")
-            _check(f"track.pad.tau_s[{i}]", ti, ti > 0, "must be > 0 (s)")
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``K_inf + sum_i K_i i omega tau_i / (1 + i omega tau_i)`` in N/m."""
@@ -119,3 +116,65 @@ class GeneralizedMaxwell(PadModel):
         iwt = 2j * np.pi * f[..., None] * np.asarray(self.tau_s)
         branches = np.asarray(self.k_n_per_m) * iwt / (1.0 + iwt)
         return self.k_inf_n_per_m + branches.sum(axis=-1)
+
+
+def _zener_starts(f: NDArray[np.float64], k: NDArray[np.complex128], ks: float) -> list[FitStart]:
+    """Three starts (alpha = 0.2, 0.5, 0.9) around the data's relaxed/unrelaxed stiffness."""
+    k0, kinf = float(k.real.min()), float(k.real.max())
+    f_peak = float(f[np.argmax(k.imag / k.real)])
+    lo, hi = [np.log(1e-6), np.log(1e-6), -np.inf, 0.01], [np.inf, np.inf, np.inf, 1.0]
+
+    def build(x: NDArray[np.float64]) -> PadModel:
+        k0 = float(ks * np.exp(x[0]))
+        return FractionalZener(k0, k0 + float(ks * np.exp(x[1])), float(10.0 ** x[2]), float(x[3]))
+
+    x0 = [np.log(k0 / ks), np.log(max(kinf - k0, 1e-3 * k0) / ks), -np.log10(2 * np.pi * f_peak)]
+    return [FitStart([*x0, a], lo, hi, build) for a in (0.2, 0.5, 0.9)]
+
+
+def _prony_starts(
+    f: NDArray[np.float64], k: NDArray[np.complex128], ks: float, n_terms: int | None
+) -> list[FitStart]:
+    """Relaxation times log-uniform over the band widened by a decade each side."""
+    lo, hi = np.log10(f.min()) - 1.0, np.log10(f.max()) + 1.0
+    n = n_terms or int(np.ceil(2 * (hi - lo))) + 1
+    fi = np.logspace(lo, hi, n) if n > 1 else np.array([float(np.exp(np.mean(np.log(f))))])
+    tau = 1.0 / (2 * np.pi * fi)
+    k0 = float(k.real.min())
+    x0 = [k0 / ks] + [max(k.real.max() - k0, 1e-3 * k0) / ks / n] * n
+    return [
+        FitStart(
+            x0,
+            [1e-9] + [0.0] * n,
+            [np.inf] * (n + 1),
+            lambda x: GeneralizedMaxwell(float(x[0] * ks), tuple(x[1:] * ks), tuple(tau)),
+        )
+    ]
+
+
+def _fit_starts_zener(
+    cls: type,
+    f: NDArray[np.float64],
+    k: NDArray[np.complex128],
+    *,
+    n_terms: int | None,
+    f0_hz: float,
+) -> list[FitStart]:
+    """Fit starts of :class:`FractionalZener` (see :meth:`PadModel.fit_starts`)."""
+    return _zener_starts(f, k, float(np.median(k.real)))
+
+
+def _fit_starts_prony(
+    cls: type,
+    f: NDArray[np.float64],
+    k: NDArray[np.complex128],
+    *,
+    n_terms: int | None,
+    f0_hz: float,
+) -> list[FitStart]:
+    """Fit starts of :class:`GeneralizedMaxwell` (see :meth:`PadModel.fit_starts`)."""
+    return _prony_starts(f, k, float(np.median(k.real)), n_terms)
+
+
+FractionalZener.fit_starts = classmethod(_fit_starts_zener)  # type: ignore[method-assign,assignment]
+GeneralizedMaxwell.fit_starts = classmethod(_fit_starts_prony)  # type: ignore[method-assign,assignment]

@@ -1,6 +1,6 @@
 """Spatial irregularity spectra (one-sided, m^2/(rad/m) vs rad/m) and temporal conversion."""
 
-from railvib.spectra.base import SpatialSpectrum, temporal_psd
+from railvib.spectra.base import SPECTRA, SpatialSpectrum, temporal_psd
 from railvib.spectra.chinese import ChineseHSR
 from railvib.spectra.combined import Combined
 from railvib.spectra.factory import PAPER_SPECTRUM_DICT, spectrum_from_dict
@@ -12,6 +12,7 @@ from railvib.spectra.tabulated import Tabulated
 
 __all__ = [
     "PAPER_SPECTRUM_DICT",
+    "SPECTRA",
     "ChineseHSR",
     "Combined",
     "FRAClass",

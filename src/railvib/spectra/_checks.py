@@ -7,25 +7,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
 
-__all__ = ["as_wavenumber", "check_non_negative", "check_positive"]
-
-
-def check_positive(name: str, value: object, unit: str) -> float:
-    """Return `value` as float, or raise CaseError unless it is a finite number > 0."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise CaseError(name, value, f"a finite number > 0 ({unit})")
-    if not (np.isfinite(value) and value > 0):
-        raise CaseError(name, value, f"a finite number > 0 ({unit})")
-    return float(value)
-
-
-def check_non_negative(name: str, value: object, unit: str) -> float:
-    """Return `value` as float, or raise CaseError unless it is a finite number >= 0."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise CaseError(name, value, f"a finite number >= 0 ({unit})")
-    if not (np.isfinite(value) and value >= 0):
-        raise CaseError(name, value, f"a finite number >= 0 ({unit})")
-    return float(value)
+__all__ = ["as_wavenumber"]
 
 
 def as_wavenumber(wavenumber: ArrayLike) -> NDArray[np.float64]:

@@ -15,12 +15,26 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
+from railvib.registry import Registry, check_parameters
 
-__all__ = ["SpatialSpectrum", "temporal_psd"]
+__all__ = ["SPECTRA", "SpatialSpectrum", "temporal_psd"]
 
 
 class SpatialSpectrum(ABC):
-    """One-sided spatial PSD of the vertical rail irregularity, m^2/(rad/m) vs rad/m."""
+    """One-sided spatial PSD of the vertical rail irregularity, m^2/(rad/m) vs rad/m.
+
+    A spectrum is a frozen dataclass whose fields are declared with
+    :func:`railvib.registry.parameter` and registers itself in :data:`SPECTRA`
+    (``docs/extending.md``); its declared parameters are checked on construction,
+    conditions between them in :meth:`validate`.
+    """
+
+    def __post_init__(self) -> None:
+        check_parameters(self, "finite")
+        self.validate()
+
+    def validate(self) -> None:  # noqa: B027 (a hook: most spectra need no extra check)
+        """Check conditions between parameters (each parameter alone is checked already)."""
 
     @abstractmethod
     def psd(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
@@ -52,3 +66,9 @@ def temporal_psd(spectrum: SpatialSpectrum, f: ArrayLike, speed: float) -> NDArr
         raise CaseError("speed", speed, "must be > 0 (m/s)")
     f = np.asarray(f, dtype=float)
     return (2.0 * np.pi / speed) * spectrum.psd(2.0 * np.pi * f / speed)
+
+
+#: every irregularity spectrum a case file can name (``[irregularity] type = "..."``)
+SPECTRA: Registry[SpatialSpectrum] = Registry(
+    "irregularity spectrum", SpatialSpectrum, "type", style="finite"
+)

@@ -7,9 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
+from railvib.registry import parameter
 from railvib.spectra._checks import as_wavenumber
-from railvib.spectra.base import SpatialSpectrum
+from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["ChineseHSR"]
 
@@ -23,6 +23,7 @@ HSR_N_MAX = 0.5
 MM2_TO_M2 = 1e-6
 
 
+@SPECTRA.register("chinese_hsr")
 @dataclass(frozen=True)
 class ChineseHSR(SpatialSpectrum):
     """TB/T 3352-2014 vertical profile, piecewise ``S(n) = A_i / n^k_i`` in mm^2/(cycle/m).
@@ -42,12 +43,9 @@ class ChineseHSR(SpatialSpectrum):
         False (default): zero outside the band. True: extend the end power laws.
     """
 
-    extrapolate: bool = False
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.extrapolate, (bool, np.bool_)):
-            raise CaseError("extrapolate", self.extrapolate, "true or false")
-        object.__setattr__(self, "extrapolate", bool(self.extrapolate))
+    extrapolate: bool = parameter(
+        "", "extend the end power laws beyond 2-200 m (default: zero there)", default=False
+    )
 
     def psd(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
         """One-sided PSD in m^2/(rad/m) at spatial circular frequency `wavenumber` (rad/m, > 0)."""

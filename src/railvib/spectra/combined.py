@@ -7,13 +7,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
-from railvib.spectra._checks import as_wavenumber, check_non_negative, check_positive
-from railvib.spectra.base import SpatialSpectrum
+from railvib.registry import parameter
+from railvib.spectra._checks import as_wavenumber
+from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["Combined"]
 
 
+@SPECTRA.register("combined")
 @dataclass(frozen=True)
 class Combined(SpatialSpectrum):
     """Long-wave spectrum above the split wavelength, short-wave spectrum below it.
@@ -42,20 +43,18 @@ class Combined(SpatialSpectrum):
         Width of the smooth blend in decades of wavenumber (>= 0). Default 0.0: hard switch.
     """
 
-    long_wave: SpatialSpectrum
-    short_wave: SpatialSpectrum
-    split_wavelength_m: float = 1.0
-    blend_decades: float = 0.0
-
-    def __post_init__(self) -> None:
-        for name in ("long_wave", "short_wave"):
-            value = getattr(self, name)
-            if not isinstance(value, SpatialSpectrum):
-                raise CaseError(name, value, "a SpatialSpectrum (m^2/(rad/m))")
-        split = check_positive("split_wavelength_m", self.split_wavelength_m, "m")
-        blend = check_non_negative("blend_decades", self.blend_decades, "decades")
-        object.__setattr__(self, "split_wavelength_m", split)
-        object.__setattr__(self, "blend_decades", blend)
+    long_wave: SpatialSpectrum = parameter(
+        "m^2/(rad/m)", "spectrum above the split wavelength", kind="member", family=SPECTRA
+    )
+    short_wave: SpatialSpectrum = parameter(
+        "m^2/(rad/m)", "spectrum below the split wavelength", kind="member", family=SPECTRA
+    )
+    split_wavelength_m: float = parameter(
+        "m", "split wavelength", default=1.0, gt=0.0, typical=(0.5, 2.0)
+    )
+    blend_decades: float = parameter(
+        "decades", "width of a smooth log-space blend (0: hard switch)", default=0.0, ge=0.0
+    )
 
     @property
     def split_wavenumber_rad_per_m(self) -> float:

@@ -7,9 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
+from railvib.registry import parameter
 from railvib.spectra._checks import as_wavenumber
-from railvib.spectra.base import SpatialSpectrum
+from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["FRAClass"]
 
@@ -27,6 +27,7 @@ FRA_OMEGA_C_RAD_PER_M = 0.8245  # break wavenumber, rad/m, every class
 CM2_TO_M2 = 1e-4
 
 
+@SPECTRA.register("fra")
 @dataclass(frozen=True)
 class FRAClass(SpatialSpectrum):
     """FRA vertical profile spectrum in the k A_v form, classes 1-6.
@@ -46,14 +47,12 @@ class FRAClass(SpatialSpectrum):
         FRA track class, 1 (worst) to 6 (best). The paper uses class 5.
     """
 
-    class_number: int
-
-    def __post_init__(self) -> None:
-        c = self.class_number
-        is_int = isinstance(c, (int, np.integer)) and not isinstance(c, bool)
-        if not is_int or c not in FRA_A_V_CM2_RAD_PER_M:
-            raise CaseError("class_number", c, "an integer 1, 2, 3, 4, 5 or 6 (FRA class)")
-        object.__setattr__(self, "class_number", int(c))
+    class_number: int = parameter(
+        "-",
+        "FRA track class, 1 (worst) to 6 (best)",
+        choices=tuple(FRA_A_V_CM2_RAD_PER_M),
+        allowed="an integer 1, 2, 3, 4, 5 or 6 (FRA class)",
+    )
 
     @property
     def a_v_cm2_rad_per_m(self) -> float:

@@ -7,9 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
+from railvib.registry import parameter
 from railvib.spectra._checks import as_wavenumber
-from railvib.spectra.base import SpatialSpectrum
+from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["GermanVertical"]
 
@@ -19,6 +19,7 @@ GERMAN_OMEGA_R_RAD_PER_M = 0.0206
 GERMAN_A_V_M2_RAD_PER_M: dict[str, float] = {"low": 4.032e-7, "high": 1.080e-6}
 
 
+@SPECTRA.register("german")
 @dataclass(frozen=True)
 class GermanVertical(SpatialSpectrum):
     """German high-speed vertical profile spectrum (low or high interference).
@@ -34,11 +35,12 @@ class GermanVertical(SpatialSpectrum):
         Interference level.
     """
 
-    level: str
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.level, str) or self.level not in GERMAN_A_V_M2_RAD_PER_M:
-            raise CaseError("level", self.level, "'low' or 'high' (German spectrum interference)")
+    level: str = parameter(
+        "",
+        "interference level",
+        choices=tuple(GERMAN_A_V_M2_RAD_PER_M),
+        allowed="'low' or 'high' (German spectrum interference)",
+    )
 
     @property
     def a_v_m2_rad_per_m(self) -> float:

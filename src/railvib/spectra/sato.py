@@ -7,12 +7,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.spectra._checks import as_wavenumber, check_positive
-from railvib.spectra.base import SpatialSpectrum
+from railvib.registry import parameter
+from railvib.spectra._checks import as_wavenumber
+from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["Sato"]
 
 
+@SPECTRA.register("sato")
 @dataclass(frozen=True)
 class Sato(SpatialSpectrum):
     """Sato (RTRI 1977) short-wave spectrum, ``S(Omega) = A / Omega^3`` in m^2/(rad/m).
@@ -25,12 +27,14 @@ class Sato(SpatialSpectrum):
         Omega in rad/m.
     """
 
-    coefficient: float = 4.15e-8
-
-    def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "coefficient", check_positive("coefficient", self.coefficient, "m rad")
-        )
+    coefficient: float = parameter(
+        "m rad",
+        "A: 4.15e-8 good track, 5.0e-7 poor track",
+        default=4.15e-8,
+        gt=0.0,
+        typical=(4.15e-8, 5.0e-7),
+        log=True,
+    )
 
     def psd(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
         """One-sided PSD in m^2/(rad/m) at spatial circular frequency `wavenumber` (rad/m, > 0)."""

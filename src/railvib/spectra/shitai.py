@@ -7,14 +7,16 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.spectra._checks import as_wavenumber, check_positive
-from railvib.spectra.base import SpatialSpectrum
+from railvib.registry import parameter
+from railvib.spectra._checks import as_wavenumber
+from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["ShiTai"]
 
 MM2_TO_M2 = 1e-6
 
 
+@SPECTRA.register("shitai")
 @dataclass(frozen=True)
 class ShiTai(SpatialSpectrum):
     """Short-wave spectrum ``S(n) = coefficient * n^(-exponent)`` in mm^2/(cycle/m), n in cycle/m.
@@ -30,16 +32,12 @@ class ShiTai(SpatialSpectrum):
         Power-law exponent, dimensionless (> 0). Default 3.15.
     """
 
-    coefficient: float = 0.036
-    exponent: float = 3.15
-
-    def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "coefficient", check_positive("coefficient", self.coefficient, "mm^2/(cycle/m)")
-        )
-        object.__setattr__(
-            self, "exponent", check_positive("exponent", self.exponent, "dimensionless")
-        )
+    coefficient: float = parameter(
+        "mm^2/(cycle/m)", "level at n = 1 cycle/m", default=0.036, gt=0.0, typical=(0.01, 0.1)
+    )
+    exponent: float = parameter(
+        "-", "power-law exponent of n", default=3.15, gt=0.0, typical=(2.5, 3.5)
+    )
 
     def psd(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
         """One-sided PSD in m^2/(rad/m) at spatial circular frequency `wavenumber` (rad/m, > 0)."""

@@ -5,13 +5,15 @@ from __future__ import annotations
 import csv
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
+from railvib.registry import Parameter
 from railvib.spectra._checks import as_wavenumber
-from railvib.spectra.base import SpatialSpectrum
+from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["Tabulated"]
 
@@ -42,6 +44,21 @@ def _check_column(name: str, values: NDArray[np.float64], unit: str) -> None:
         raise CaseError(name, bad, f"every value must be finite and > 0 ({unit})")
 
 
+#: keys of a ``type = "tabulated"`` table: a CSV file, or the two arrays inline
+TABLE_PARAMETERS = (
+    Parameter(
+        "path",
+        "",
+        "CSV file (relative to the case file): one abscissa and one PSD column",
+        "path",
+        default=None,
+    ),
+    Parameter("delimiter", "", "field separator of the CSV file", "text", default=","),
+    Parameter("wavenumber_rad_per_m", "rad/m", "wavenumbers, inline", "numbers", default=None),
+    Parameter("psd_m2_per_rad_per_m", "m^2/(rad/m)", "PSD values, inline", "numbers", default=None),
+)
+
+
 @dataclass(frozen=True, eq=False)
 class Tabulated(SpatialSpectrum):
     """Tabulated one-sided spatial PSD, interpolated linearly in log(S) against log(Omega).
@@ -62,7 +79,8 @@ class Tabulated(SpatialSpectrum):
     wavenumber_rad_per_m: NDArray[np.float64] = field(repr=False)
     psd_m2_per_rad_per_m: NDArray[np.float64] = field(repr=False)
 
-    def __post_init__(self) -> None:
+    def validate(self) -> None:
+        """A 1-D table of >= 2 distinct, positive wavenumbers and positive PSDs (sorted here)."""
         om = np.asarray(self.wavenumber_rad_per_m, dtype=float)
         s = np.asarray(self.psd_m2_per_rad_per_m, dtype=float)
         if om.ndim != 1 or om.size < 2:
@@ -148,3 +166,26 @@ class Tabulated(SpatialSpectrum):
         s = np.exp(np.interp(np.log(om), log_om, log_s))
         inside = (om >= self.wavenumber_rad_per_m[0]) & (om <= self.wavenumber_rad_per_m[-1])
         return np.where(inside, s, 0.0)
+
+
+def _from_table(**d: Any) -> Tabulated:
+    """Build a :class:`Tabulated` from a table's keys (see :data:`TABLE_PARAMETERS`)."""
+    has_path = "path" in d
+    has_arrays = "wavenumber_rad_per_m" in d or "psd_m2_per_rad_per_m" in d
+    if has_path == has_arrays:
+        raise CaseError(
+            "", sorted(d), "either 'path' or both 'wavenumber_rad_per_m' and 'psd_m2_per_rad_per_m'"
+        )
+    if has_path:
+        return Tabulated.from_csv(
+            d["path"], **({"delimiter": d["delimiter"]} if "delimiter" in d else {})
+        )
+    if "delimiter" in d:
+        raise CaseError("delimiter", d["delimiter"], "only together with 'path'")
+    for key in ("wavenumber_rad_per_m", "psd_m2_per_rad_per_m"):
+        if key not in d:
+            raise CaseError(key, None, "required with the other array (list)")
+    return Tabulated(**d)
+
+
+SPECTRA.register("tabulated", parameters=TABLE_PARAMETERS, build=_from_table)(Tabulated)
