@@ -4,7 +4,7 @@
 paper's Figs. 9-16, reads every number the paper states from our curves and writes, to
 one folder: the figures (PNG), ``paper_comparison.md``/``.csv`` and a self-contained
 ``report.html``. The study itself (cases, figures, numbers and how each is read) is
-data in :mod:`railvib.reproduce.study`.
+data, ``reproduce/paper_wang2017.toml``, read and checked by :mod:`railvib.reproduce.study`.
 
 Examples
 --------

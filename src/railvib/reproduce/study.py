@@ -1,29 +1,45 @@
-"""The paper's study as data: its cases, its figures and every number it states.
+"""The paper's study: its cases, its figures and every number it states, read from data.
 
 Wang, Yang, Wei, Zhou, "Stationary random vibration analysis of vehicle-track coupled
 system with nonlinear stiffness of railpads", J. Vibroengineering 19(6), 2017
 (DOI 10.21595/jve.2017.17947), sections 3.3 and 3.4, Figs. 9-16.
 
-Nothing here is computed: the tables say *which* presets form each comparison, *what*
-each figure shows and *how* each of the paper's numbers is read from our curves (the
-metric named in :mod:`railvib.reproduce.metrics`, the response and the band searched).
+The study is data, in ``railvib/reproduce/paper_wang2017.toml`` (:data:`DATA_FILE`): *which*
+presets form each comparison, *what* each figure shows and *how* each of the paper's numbers
+is read from our curves (the metric named in :mod:`railvib.reproduce.metrics`, the response
+and the band searched). This module defines the records, reads and checks that file once on
+import (:func:`load_study`) and exposes its tables as :data:`CASES`, :data:`COMPARISONS`,
+:data:`FIGURES` and :data:`PAPER_NUMBERS`. Nothing is computed except a derived paper value
+(``paper_expr``: a ratio or a difference of two numbers the paper prints).
 The interpretation of every ambiguous paper value lives in the preset files
 (``railvib/presets/cases/wang2017_*.toml``) and in ``docs/paper-interpretation.md``.
 
-Components: the paper's "bogie" is read as the front bogie (``bogie1.bounce``, the one
-carrying the 2nd wheelset), "wheelset" as the 2nd wheelset (``wheelset2.bounce``, named in
-the caption of Fig. 11) and "rail" as the rail under the 2nd wheel (``rail@wheel2``).
+Components (the file's ``[components]``): the paper's "bogie" is read as the front bogie
+(``bogie1.bounce``, the one carrying the 2nd wheelset), "wheelset" as the 2nd wheelset
+(``wheelset2.bounce``, named in the caption of Fig. 11) and "rail" as the rail under the 2nd
+wheel (``rail@wheel2``).
 """
 
 from __future__ import annotations
 
+import inspect
+import math
+import operator
+import tomllib
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
 from types import MappingProxyType
 from typing import Any
+
+from railvib.errors import CaseError
+from railvib.reproduce.metrics import METRICS
 
 __all__ = [
     "CASES",
     "COMPARISONS",
+    "DATA_FILE",
     "FIGURES",
     "PAPER_NUMBERS",
     "Comparison",
@@ -31,14 +47,13 @@ __all__ = [
     "Mark",
     "PaperNumber",
     "PaperPoint",
+    "Study",
     "StudyCase",
+    "load_study",
 ]
 
-BODY = "carbody.bounce"
-BOGIE = "bogie1.bounce"
-WHEELSET = "wheelset2.bounce"
-RAIL = "rail@wheel2"
-PSD_UNIT = "m^2/s^4/Hz"
+#: name of the study's data file, shipped in this package
+DATA_FILE = "paper_wang2017.toml"
 
 
 @dataclass(frozen=True)
@@ -210,550 +225,430 @@ class PaperNumber:
     derived: bool = False
 
 
-def _n(**kw: Any) -> MappingProxyType[str, Any]:
-    return MappingProxyType(kw)
+@dataclass(frozen=True)
+class Study:
+    """The whole study as read from its data file by :func:`load_study`.
+
+    Parameters
+    ----------
+    cases : tuple of StudyCase
+        The computed cases, in file order.
+    comparisons : tuple of Comparison
+        The sets of cases the paper overlays.
+    figures : tuple of FigureSpec
+        The paper's figures, in file order.
+    numbers : tuple of PaperNumber
+        Every number the paper states, in file order.
+    components : mapping of str to str
+        The paper's components (``body``, ``bogie``, ``wheelset``, ``rail``) and the
+        response label each is read as.
+    psd_unit : str
+        Unit of the PSDs, ``"m^2/s^4/Hz"``.
+    notes : mapping of str to str
+        The shared notes, by name (a number's ``note = "@name"``).
+    """
+
+    cases: tuple[StudyCase, ...]
+    comparisons: tuple[Comparison, ...]
+    figures: tuple[FigureSpec, ...]
+    numbers: tuple[PaperNumber, ...]
+    components: MappingProxyType[str, str]
+    psd_unit: str
+    notes: MappingProxyType[str, str]
 
 
-CASES: tuple[StudyCase, ...] = (
-    StudyCase("constant", "wang2017_metro", "constant stiffness (50 kN/mm)", "black"),
-    StudyCase("freqdep", "wang2017_freqdep_20c", "frequency-dependent stiffness, 20 °C", "tab:red"),
-    StudyCase("m30", "wang2017_temp_m30c", "-30 °C (K0 = 70.8 kN/mm)", "tab:blue"),
-    StudyCase("m10", "wang2017_temp_m10c", "-10 °C (K0 = 45.2 kN/mm)", "tab:green"),
-    StudyCase("p20", "wang2017_temp_p20c", "+20 °C (K0 = 31.0 kN/mm)", "tab:orange"),
-)
+# --- reading and checking the data file ---------------------------------------------------
 
-COMPARISONS: tuple[Comparison, ...] = (
-    Comparison(
-        "freqdep",
-        "constant vs frequency-dependent railpad stiffness at 20 °C",
-        "§3.3",
-        ("constant", "freqdep"),
-    ),
-    Comparison(
-        "temperature",
-        "frequency-dependent railpad stiffness at -30, -10 and +20 °C",
-        "§3.4",
-        ("m30", "m10", "p20"),
-    ),
-)
+_TOP_REQUIRED = ("psd_unit", "components", "case", "comparison", "figure", "number")
+_TOP_OPTIONAL = ("notes",)
+_COMPONENTS = ("body", "bogie", "wheelset", "rail")
+_CASE_KEYS = ("key", "preset", "label", "color")
+_COMPARISON_KEYS = ("key", "title", "section", "cases")
+_FIGURE_REQUIRED = ("number", "comparison", "component", "response", "panels")
+_FIGURE_OPTIONAL = ("paper_points", "marks", "paper_lines")
+_POINT_KEYS = ("case", "frequency_hz", "psd")
+_MARK_KEYS = ("label", "band")
+_LINE_KEYS = ("frequency_hz", "label")
+_NUMBER_REQUIRED = ("id", "source", "quantity", "unit", "paper_text", "metric", "args", "reading")
+_NUMBER_OPTIONAL = ("paper", "paper_expr", "derived", "note", "claim")
+_CLAIM_OPS = ("<", "<=", ">", ">=")
+_EXPR_OPS: Mapping[str, Callable[[float, float], float]] = {
+    "/": operator.truediv,
+    "-": operator.sub,
+}
 
-FIGURES: tuple[FigureSpec, ...] = (
-    FigureSpec(9, "freqdep", "car body", BODY, ((0.5, 20.0), (0.5, 100.0))),
-    FigureSpec(
-        10,
-        "freqdep",
-        "bogie",
-        BOGIE,
-        ((0.5, 20.0), (20.0, 100.0)),
-        paper_lines=((7.02, "paper: peak 7.02 Hz"),),
-        marks=(Mark("peak", (0.5, 20.0)), Mark("A", (20.0, 45.0)), Mark("B", (45.0, 100.0))),
-    ),
-    FigureSpec(
-        11,
-        "freqdep",
-        "2nd wheelset",
-        WHEELSET,
-        ((0.5, 200.0),),
-        paper_points=(PaperPoint("constant", 47.9, 8.82), PaperPoint("freqdep", 57.1, 13.5)),
-        marks=(Mark("peak", (0.5, 1000.0)),),
-    ),
-    FigureSpec(
-        12,
-        "freqdep",
-        "rail",
-        RAIL,
-        ((0.5, 100.0), (100.0, 1000.0)),
-        paper_lines=((50.0, "paper: crossover 50 Hz"), (840.0, "paper: peak 840 Hz")),
-    ),
-    FigureSpec(13, "temperature", "car body", BODY, ((0.5, 20.0), (0.5, 100.0))),
-    FigureSpec(
-        14,
-        "temperature",
-        "bogie",
-        BOGIE,
-        ((0.5, 20.0), (20.0, 100.0)),
-        paper_points=(
-            PaperPoint("m30", 71.2, 4.51e-3),
-            PaperPoint("m10", 70.0, 1.78e-3),
-            PaperPoint("p20", 70.0, 4.60e-4),
-        ),
-        marks=(Mark("A", (65.0, 75.0)),),
-        paper_lines=((63.0, "paper: crossover 63 Hz"),),
-    ),
-    FigureSpec(
-        15,
-        "temperature",
-        "2nd wheelset",
-        WHEELSET,
-        ((0.5, 200.0),),
-        paper_points=(
-            PaperPoint("m30", 73.4, 63.4),
-            PaperPoint("m10", 63.1, 27.5),
-            PaperPoint("p20", 50.3, 13.1),
-        ),
-        marks=(Mark("peak", (0.5, 1000.0)),),
-    ),
-    FigureSpec(16, "temperature", "rail", RAIL, ((0.5, 200.0), (200.0, 1000.0))),
-)
 
-_WHOLE = (0.5, 1000.0)
-_LEVEL = (
-    "Our Fig. 11 peaks are 2.5-3.2 times the paper's with the Table 2 damping read as "
-    "5e4 N s/m; no convention factor (one/two-sided, per Hz/rad, cm/mm) explains it "
-    "(docs/paper-interpretation.md). Not tuned."
-)
-_LEVEL15 = (
-    "Of the paper's order (-27 % to +34 %), but the paper's series grows more steeply with "
-    "cold (4.8x from +20 to -30 °C, ours 2.6x) because its resonance moves further (Fig. 15 "
-    "frequency rows). Not tuned."
-)
-_F11 = (
-    "The paper does not print K0 of its 20 °C frequency-dependent curve; we take K0 = 50 kN/mm "
-    "at f0 = 5 Hz (equal to the constant case at f0). Its 57.1 Hz needs a stiffer curve "
-    "(K0 ≈ 70.8 kN/mm, f0 ≲ 3 Hz: the literal +20 °C ↔ 70.8 pairing). Not tuned."
-)
-_TEMP_SHORT = "Our temperature series sits 12-23 Hz below the paper's (see the Fig. 15 rows)."
-_TEMP = (
-    "Our series is 12-23 Hz below the paper's: with the physical pairing (+20 °C ↔ 31.0 "
-    "kN/mm) and f0 = 5 Hz no K0/f0 choice gives 50/63/73 Hz (docs/paper-interpretation.md); "
-    "the paper's +20 °C result (50.3 Hz) matches our -30 °C (K0 = 70.8) case. Trend "
-    "reproduced, values not."
-)
+class _Reader:
+    """Type and key checks of one parsed study file; errors name ``<file>: <field>``."""
 
-PAPER_NUMBERS: tuple[PaperNumber, ...] = (
-    # --- Fig. 9: car body, constant vs frequency-dependent --------------------------------
-    PaperNumber(
-        "fig9.body.spread",
-        "Fig. 9, §3.3",
-        "car body PSD: constant vs frequency-dependent",
-        "%",
-        None,
-        "curves basically overlap",
-        "rms_spread",
-        _n(cases=("constant", "freqdep"), response=BODY, band=(0.5, 20.0)),
-        "100 (largest/smallest car-body RMS over 0.5-20 Hz - 1)",
-        claim=("<", 3.0),
-    ),
-    # --- Fig. 10: bogie ---------------------------------------------------------------------
-    PaperNumber(
-        "fig10a.peak_frequency",
-        "Fig. 10(a), §3.3",
-        "bogie PSD peak frequency (constant)",
-        "Hz",
-        7.02,
-        "peak at 7.02 Hz",
-        "peak_frequency",
-        _n(case="constant", response=BOGIE, band=(0.5, 20.0)),
-        "frequency of the largest PSD value in 0.5-20 Hz (grid step 0.1 Hz)",
-        "Within the 0.1 Hz grid step; the coupled bogie bounce mode.",
-    ),
-    PaperNumber(
-        "fig10a.peak_difference",
-        "Fig. 10(a), §3.3",
-        "bogie PSD peak: abs(frequency-dependent - constant)",
-        PSD_UNIT,
-        2.0e-6,
-        "gap of 2.0e-6 m²/s⁴/Hz at the 7.02 Hz peak",
-        "peak_difference",
-        _n(cases=("freqdep", "constant"), response=BOGIE, band=(0.5, 20.0)),
-        "absolute difference of the two curves' maxima in 0.5-20 Hz",
-        "Both are tiny (relative 5e-5); the peak itself is 0.16 m²/s⁴/Hz, so the pad law "
-        "barely reaches the bogie bounce mode in either model.",
-    ),
-    PaperNumber(
-        "fig10a.low_spread",
-        "Fig. 10(a), §3.3",
-        "bogie PSD below 15 Hz: constant vs freq.-dep.",
-        "%",
-        None,
-        "very little difference within 15 Hz",
-        "rms_spread",
-        _n(cases=("constant", "freqdep"), response=BOGIE, band=(0.5, 15.0)),
-        "100 (largest/smallest bogie RMS over 0.5-15 Hz - 1)",
-        claim=("<", 3.0),
-    ),
-    PaperNumber(
-        "fig10b.point_a",
-        "Fig. 10(b), §3.3",
-        "bogie, point A (20-45 Hz): freq.-dep. / constant",
-        "%",
-        88.5,
-        "88.5 %",
-        "peak_ratio",
-        _n(cases=("freqdep", "constant"), response=BOGIE, band=(20.0, 45.0), percent=True),
-        "ratio of the two curves' maxima in 20-45 Hz",
-        "Same direction (frequency dependence lowers 20-45 Hz); ours is a larger drop because "
-        "our wheel-track resonance sits lower (see Fig. 11 rows).",
-        claim=("<", 100.0),
-    ),
-    PaperNumber(
-        "fig10b.point_b",
-        "Fig. 10(b), §3.3",
-        "bogie, point B (45-100 Hz): constant / freq.-dep.",
-        "%",
-        56.1,
-        "56.1 %",
-        "peak_ratio",
-        _n(cases=("constant", "freqdep"), response=BOGIE, band=(45.0, 100.0), percent=True),
-        "ratio of the two curves' maxima in 45-100 Hz",
-        "Same direction (frequency dependence raises 45-100 Hz); see point A.",
-        claim=("<", 100.0),
-    ),
-    # --- Fig. 11: 2nd wheelset ----------------------------------------------------------------
-    PaperNumber(
-        "fig11.peak.constant",
-        "Fig. 11, §3.3",
-        "2nd wheelset PSD peak (constant)",
-        PSD_UNIT,
-        8.82,
-        "8.82 m²/s⁴/Hz",
-        "peak",
-        _n(case="constant", response=WHEELSET, band=_WHOLE),
-        "largest PSD value over the grid (0.5-1000 Hz)",
-        _LEVEL,
-    ),
-    PaperNumber(
-        "fig11.frequency.constant",
-        "Fig. 11, §3.3",
-        "2nd wheelset 1st dominant frequency (constant)",
-        "Hz",
-        47.9,
-        "47.9 Hz",
-        "peak_frequency",
-        _n(case="constant", response=WHEELSET, band=_WHOLE),
-        "frequency of the largest PSD value over the grid",
-        "Whole wheelset on a one-rail beam (the paper's reading; an independent finite-track "
-        "model gives 46 Hz).",
-    ),
-    PaperNumber(
-        "fig11.peak.freqdep",
-        "Fig. 11, §3.3",
-        "2nd wheelset PSD peak (frequency-dependent)",
-        PSD_UNIT,
-        13.5,
-        "13.5 m²/s⁴/Hz",
-        "peak",
-        _n(case="freqdep", response=WHEELSET, band=_WHOLE),
-        "largest PSD value over the grid",
-        _LEVEL,
-    ),
-    PaperNumber(
-        "fig11.frequency.freqdep",
-        "Fig. 11, §3.3",
-        "2nd wheelset 1st dominant frequency (frequency-dependent)",
-        "Hz",
-        57.1,
-        "57.1 Hz",
-        "peak_frequency",
-        _n(case="freqdep", response=WHEELSET, band=_WHOLE),
-        "frequency of the largest PSD value over the grid",
-        _F11,
-    ),
-    PaperNumber(
-        "fig11.peak_ratio",
-        "Fig. 11, §3.3 (derived)",
-        "2nd wheelset peak: freq.-dep. / constant",
-        "-",
-        13.5 / 8.82,
-        "13.5 / 8.82",
-        "peak_ratio",
-        _n(cases=("freqdep", "constant"), response=WHEELSET, band=_WHOLE),
-        "ratio of the two curves' maxima over the grid",
-        "Frequency dependence raises the peak in both; ours more strongly. " + _F11,
-        claim=(">", 1.0),
-        derived=True,
-    ),
-    PaperNumber(
-        "fig11.frequency_shift",
-        "Fig. 11, §3.3 (derived)",
-        "2nd wheelset dominant frequency: freq.-dep. - constant",
-        "Hz",
-        57.1 - 47.9,
-        "57.1 - 47.9 Hz",
-        "frequency_shift",
-        _n(cases=("freqdep", "constant"), response=WHEELSET, band=_WHOLE),
-        "difference of the frequencies of the two curves' maxima",
-        _F11,
-        claim=(">", 0.0),
-        derived=True,
-    ),
-    PaperNumber(
-        "fig11.raise_50_200",
-        "Fig. 11, §3.3",
-        "2nd wheelset RMS 50-200 Hz: freq.-dep. / constant",
-        "-",
-        None,
-        "frequency dependence significantly increases 50-200 Hz",
-        "rms_ratio",
-        _n(cases=("freqdep", "constant"), response=WHEELSET, band=(50.0, 200.0)),
-        "ratio of the RMS over 50-200 Hz",
-        claim=(">", 1.0),
-    ),
-    # --- Fig. 12: rail ------------------------------------------------------------------------
-    PaperNumber(
-        "fig12a.crossover",
-        "Fig. 12(a), §3.3",
-        "rail: frequency where freq.-dep. overtakes constant",
-        "Hz",
-        50.0,
-        "lower below 50 Hz, higher above",
-        "crossover",
-        _n(cases=("freqdep", "constant"), response=RAIL, band=(20.0, 100.0)),
-        "first sign change (- to +) of log(PSD_freqdep / PSD_constant) in 20-100 Hz, interpolated",
-        "Same behaviour; the crossover follows the wheel-track resonance, which is lower in "
-        "ours (Fig. 11).",
-    ),
-    PaperNumber(
-        "fig12b.comb_spacing",
-        "Fig. 12(b), §3.3",
-        "rail PSD peak spacing in 100-1000 Hz",
-        "Hz",
-        10.0,
-        "f_int = v/l (10 Hz)",
-        "comb_spacing",
-        _n(case="constant", response=RAIL, band=(100.0, 1000.0)),
-        "mean spacing (last - first)/(n - 1) of the local maxima of log10 PSD with prominence "
-        ">= 0.1 decade and >= 5 Hz apart, 100-1000 Hz",
-        "v/(2 l_t) = 22.22/2.2 = 10.10 Hz; the paper rounds to 10 Hz and writes l for the "
-        "wheelbase 2 l_t. The other wheels (1.76 Hz comb) shift single peaks slightly.",
-    ),
-    PaperNumber(
-        "fig12b.peak_840",
-        "Fig. 12, §3.3",
-        "rail PSD broad peak (overall trend)",
-        "Hz",
-        840.0,
-        "a peak at 840 Hz",
-        "envelope_peak_frequency",
-        _n(case="constant", response=RAIL, band=(100.0, 1000.0)),
-        "maximum of log10 PSD smoothed (moving mean) over one comb period v/(2 l_t), 100-1000 Hz",
-        "The wheel-on-contact-spring / rail resonance of the one-rail model.",
-    ),
-    PaperNumber(
-        "fig12b.peak_840_raw",
-        "Fig. 12, §3.3",
-        "rail PSD maximum in 100-1000 Hz (raw curve)",
-        "Hz",
-        840.0,
-        "a peak at 840 Hz",
-        "peak_frequency",
-        _n(case="constant", response=RAIL, band=(100.0, 1000.0)),
-        "frequency of the largest PSD value in 100-1000 Hz (a comb tooth near the broad peak)",
-        "The same 840 Hz statement read without smoothing.",
-    ),
-    PaperNumber(
-        "fig12b.difference",
-        "Fig. 12(b), §3.3",
-        "rail RMS 100-1000 Hz: constant vs freq.-dep.",
-        "%",
-        1.0,
-        "difference only 1 %",
-        "rms_spread",
-        _n(cases=("constant", "freqdep"), response=RAIL, band=(100.0, 1000.0)),
-        "100 (largest/smallest rail RMS over 100-1000 Hz - 1)",
-        "Both say the pad law hardly matters above 100 Hz.",
-        claim=("<", 5.0),
-    ),
-    # --- Fig. 13: car body, temperatures ------------------------------------------------------
-    PaperNumber(
-        "fig13.body.spread",
-        "Fig. 13, §3.4",
-        "car body PSD: -30 / -10 / +20 °C",
-        "%",
-        None,
-        "in good agreement with each other",
-        "rms_spread",
-        _n(cases=("m30", "m10", "p20"), response=BODY, band=(0.5, 20.0)),
-        "100 (largest/smallest car-body RMS over 0.5-20 Hz - 1)",
-        claim=("<", 3.0),
-    ),
-    # --- Fig. 14: bogie, temperatures ---------------------------------------------------------
-    *(
-        PaperNumber(
-            f"fig14b.peak_a.{key}",
-            "Fig. 14(b), §3.4",
-            f"bogie PSD at peak A ({temp})",
-            PSD_UNIT,
-            value,
-            text,
-            "peak",
-            _n(case=key, response=BOGIE, band=(65.0, 75.0)),
-            "largest PSD value in 65-75 Hz (the local peak near 70 Hz)",
-            "Same frequency and ordering (colder is higher); ours are about 10 times lower: "
-            "the paper's wheel-track resonance (50-73 Hz) lies at peak A and lifts it, ours "
-            "(38-50 Hz) lies below it. " + _TEMP_SHORT,
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def error(self, field: str, value: Any, allowed: str) -> CaseError:
+        return CaseError(f"{self.name}: {field}", value, allowed)
+
+    def table(
+        self,
+        value: Any,
+        field: str,
+        required: Sequence[str],
+        optional: Sequence[str] = (),
+    ) -> dict[str, Any]:
+        if not isinstance(value, dict):
+            raise self.error(field, value, "a table")
+        allowed = (*required, *optional)
+        for key in value:
+            if key not in allowed:
+                raise self.error(
+                    f"{field}.{key}", value[key], f"unknown key; allowed: {', '.join(allowed)}"
+                )
+        for key in required:
+            if key not in value:
+                raise self.error(f"{field}.{key}", None, "required")
+        return value
+
+    def tables(
+        self,
+        value: Any,
+        field: str,
+        required: Sequence[str],
+        optional: Sequence[str] = (),
+        *,
+        nonempty: bool = True,
+    ) -> list[tuple[str, dict[str, Any]]]:
+        if not isinstance(value, list) or (nonempty and not value):
+            raise self.error(
+                field, value, "a non-empty array of tables" if nonempty else "an array of tables"
+            )
+        return [
+            (f"{field}[{i}]", self.table(item, f"{field}[{i}]", required, optional))
+            for i, item in enumerate(value)
+        ]
+
+    def string(self, value: Any, field: str) -> str:
+        if not isinstance(value, str) or not value:
+            raise self.error(field, value, "a non-empty string")
+        return value
+
+    def choice(self, value: Any, field: str, allowed: Sequence[str], what: str) -> str:
+        if value not in allowed:
+            raise self.error(field, value, f"{what}, one of {', '.join(allowed)}")
+        return str(value)
+
+    def number(self, value: Any, field: str, unit: str) -> float:
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not math.isfinite(value)
+        ):
+            raise self.error(field, value, f"a finite number ({unit})")
+        return float(value)
+
+    def band(self, value: Any, field: str) -> tuple[float, float]:
+        if not isinstance(value, list) or len(value) != 2:
+            raise self.error(field, value, "[low, high], 0 <= low < high (Hz)")
+        low, high = (self.number(v, f"{field}[{i}]", "Hz") for i, v in enumerate(value))
+        if not 0.0 <= low < high:
+            raise self.error(field, value, "[low, high], 0 <= low < high (Hz)")
+        return low, high
+
+    def keys(self, value: Any, field: str, allowed: Sequence[str], what: str) -> tuple[str, ...]:
+        if not isinstance(value, list) or not value:
+            raise self.error(field, value, f"a non-empty array of {what}")
+        return tuple(self.choice(v, f"{field}[{i}]", allowed, what) for i, v in enumerate(value))
+
+    def unique(self, keys: Sequence[str], field: str, name: str) -> None:
+        for i, key in enumerate(keys):
+            if key in keys[:i]:
+                raise self.error(
+                    f"{field}[{i}].{name}", key, f"unique (already {field}[{keys.index(key)}])"
+                )
+
+
+def _cases(r: _Reader, value: Any) -> tuple[StudyCase, ...]:
+    cases = tuple(
+        StudyCase(**{k: r.string(t[k], f"{f}.{k}") for k in _CASE_KEYS})
+        for f, t in r.tables(value, "case", _CASE_KEYS)
+    )
+    r.unique([c.key for c in cases], "case", "key")
+    return cases
+
+
+def _comparisons(r: _Reader, value: Any, case_keys: Sequence[str]) -> tuple[Comparison, ...]:
+    comparisons = tuple(
+        Comparison(
+            key=r.string(t["key"], f"{f}.key"),
+            title=r.string(t["title"], f"{f}.title"),
+            section=r.string(t["section"], f"{f}.section"),
+            cases=r.keys(t["cases"], f"{f}.cases", case_keys, "case keys"),
         )
-        for key, temp, value, text in (
-            ("m30", "-30 °C", 4.51e-3, "4.51e-3 m²/s⁴/Hz"),
-            ("m10", "-10 °C", 1.78e-3, "1.78e-3 m²/s⁴/Hz"),
-            ("p20", "+20 °C", 4.60e-4, "4.60e-4 m²/s⁴/Hz"),
+        for f, t in r.tables(value, "comparison", _COMPARISON_KEYS)
+    )
+    r.unique([c.key for c in comparisons], "comparison", "key")
+    return comparisons
+
+
+def _figure(
+    r: _Reader,
+    f: str,
+    t: dict[str, Any],
+    comparisons: Mapping[str, Comparison],
+    responses: Sequence[str],
+) -> FigureSpec:
+    number = t["number"]
+    if isinstance(number, bool) or not isinstance(number, int) or number < 1:
+        raise r.error(f"{f}.number", number, "the paper's figure number, an integer >= 1")
+    comparison = r.choice(t["comparison"], f"{f}.comparison", list(comparisons), "comparison key")
+    shown = comparisons[comparison].cases
+    panels = t["panels"]
+    if not isinstance(panels, list) or not panels:
+        raise r.error(f"{f}.panels", panels, "a non-empty array of [low, high] bands (Hz)")
+    points = tuple(
+        PaperPoint(
+            case=r.choice(p["case"], f"{g}.case", shown, f"a case of comparison '{comparison}'"),
+            frequency_hz=r.number(p["frequency_hz"], f"{g}.frequency_hz", "Hz"),
+            psd=r.number(p["psd"], f"{g}.psd", "m^2/s^4/Hz"),
         )
-    ),
-    *(
-        PaperNumber(
-            f"fig14b.frequency_a.{key}",
-            "Fig. 14(b), §3.4",
-            f"bogie peak A frequency ({temp})",
-            "Hz",
-            value,
-            f"{value} Hz",
-            "peak_frequency",
-            _n(case=key, response=BOGIE, band=(65.0, 75.0)),
-            "frequency of the largest PSD value in 65-75 Hz",
-            "A comb peak of the bogie response (wheelbase filter), hence insensitive to the pad.",
+        for g, p in r.tables(
+            t.get("paper_points", []), f"{f}.paper_points", _POINT_KEYS, nonempty=False
         )
-        for key, temp, value in (
-            ("m30", "-30 °C", 71.2),
-            ("m10", "-10 °C", 70.0),
-            ("p20", "+20 °C", 70.0),
+    )
+    marks = tuple(
+        Mark(label=r.string(m["label"], f"{g}.label"), band=r.band(m["band"], f"{g}.band"))
+        for g, m in r.tables(t.get("marks", []), f"{f}.marks", _MARK_KEYS, nonempty=False)
+    )
+    lines = tuple(
+        (
+            r.number(ln["frequency_hz"], f"{g}.frequency_hz", "Hz"),
+            r.string(ln["label"], f"{g}.label"),
         )
-    ),
-    PaperNumber(
-        "fig14b.crossover",
-        "Fig. 14, §3.4",
-        "bogie: frequency above which colder is higher",
-        "Hz",
-        63.0,
-        "63 Hz critical position",
-        "crossover",
-        _n(cases=("m30", "p20"), response=BOGIE, band=(20.0, 100.0)),
-        "first sign change (- to +) of log(PSD_-30 / PSD_+20) in 20-100 Hz, interpolated",
-        "Same behaviour; the crossover sits just below the wheel-track resonance, which is "
-        "lower in ours. " + _TEMP_SHORT,
-    ),
-    PaperNumber(
-        "fig14a.low_spread",
-        "Fig. 14(a), §3.4",
-        "bogie PSD 0-20 Hz: -30 / -10 / +20 °C",
-        "%",
-        None,
-        "basically the same in 0-20 Hz",
-        "rms_spread",
-        _n(cases=("m30", "m10", "p20"), response=BOGIE, band=(0.5, 20.0)),
-        "100 (largest/smallest bogie RMS over 0.5-20 Hz - 1)",
-        claim=("<", 3.0),
-    ),
-    # --- Fig. 15: 2nd wheelset, temperatures ----------------------------------------------------
-    *(
-        PaperNumber(
-            f"fig15.peak.{key}",
-            "Fig. 15, §3.4",
-            f"2nd wheelset PSD peak ({temp})",
-            PSD_UNIT,
-            value,
-            f"{value} m²/s⁴/Hz",
-            "peak",
-            _n(case=key, response=WHEELSET, band=_WHOLE),
-            "largest PSD value over the grid",
-            _LEVEL15,
+        for g, ln in r.tables(
+            t.get("paper_lines", []), f"{f}.paper_lines", _LINE_KEYS, nonempty=False
         )
-        for key, temp, value in (
-            ("m30", "-30 °C", 63.4),
-            ("m10", "-10 °C", 27.5),
-            ("p20", "+20 °C", 13.1),
+    )
+    return FigureSpec(
+        number=number,
+        comparison=comparison,
+        component=r.string(t["component"], f"{f}.component"),
+        response=r.choice(t["response"], f"{f}.response", responses, "a [components] response"),
+        panels=tuple(r.band(p, f"{f}.panels[{i}]") for i, p in enumerate(panels)),
+        paper_points=points,
+        marks=marks,
+        paper_lines=lines,
+    )
+
+
+def _frozen(value: Any) -> Any:
+    """TOML arrays as tuples, recursively (the metrics' arguments are immutable)."""
+    if isinstance(value, list):
+        return tuple(_frozen(v) for v in value)
+    return value
+
+
+def _args(
+    r: _Reader,
+    value: Any,
+    f: str,
+    metric: str,
+    case_keys: Sequence[str],
+    responses: Sequence[str],
+) -> MappingProxyType[str, Any]:
+    """A number's metric arguments, checked against the metric's signature."""
+    params = list(inspect.signature(METRICS[metric]).parameters.values())[1:]  # after results
+    names = [p.name for p in params]
+    if not isinstance(value, dict):
+        raise r.error(f, value, f"a table of the keyword arguments of metrics.{metric}")
+    for key in value:
+        if key not in names:
+            raise r.error(
+                f"{f}.{key}", value[key], f"an argument of metrics.{metric}: {', '.join(names)}"
+            )
+    for p in params:
+        if p.default is inspect.Parameter.empty and p.name not in value:
+            raise r.error(f"{f}.{p.name}", None, f"required by metrics.{metric}")
+    args: dict[str, Any] = {}
+    for key, v in value.items():
+        field = f"{f}.{key}"
+        if key == "band":
+            args[key] = r.band(v, field)
+        elif key == "cases":
+            args[key] = r.keys(v, field, case_keys, "case keys")
+        elif key in ("case", "reference"):
+            args[key] = r.choice(v, field, case_keys, "case key")
+        elif key == "response":
+            args[key] = r.choice(v, field, responses, "a [components] response")
+        else:
+            args[key] = _frozen(v)
+    return MappingProxyType(args)
+
+
+def _note(r: _Reader, value: Any, f: str, notes: Mapping[str, str]) -> str:
+    """A number's note: a string or a list of strings joined by spaces; "@name" = notes[name]."""
+    parts = [value] if isinstance(value, str) else value
+    if not isinstance(parts, list) or not parts or not all(isinstance(p, str) for p in parts):
+        raise r.error(
+            f, value, "a string or a non-empty array of strings ('@name': a [notes] entry)"
         )
-    ),
-    *(
-        PaperNumber(
-            f"fig15.frequency.{key}",
-            "Fig. 15, §3.4",
-            f"2nd wheelset dominant frequency ({temp})",
-            "Hz",
-            value,
-            f"{value} Hz",
-            "peak_frequency",
-            _n(case=key, response=WHEELSET, band=_WHOLE),
-            "frequency of the largest PSD value over the grid",
-            _TEMP,
-        )
-        for key, temp, value in (
-            ("m30", "-30 °C", 73.4),
-            ("m10", "-10 °C", 63.1),
-            ("p20", "+20 °C", 50.3),
-        )
-    ),
-    PaperNumber(
-        "fig15.peak_ratio",
-        "Fig. 15, §3.4 (derived)",
-        "2nd wheelset peak: -30 °C / +20 °C",
-        "-",
-        63.4 / 13.1,
-        "63.4 / 13.1",
-        "peak_ratio",
-        _n(cases=("m30", "p20"), response=WHEELSET, band=_WHOLE),
-        "ratio of the two curves' maxima over the grid",
-        _TEMP,
-        claim=(">", 1.0),
-        derived=True,
-    ),
-    PaperNumber(
-        "fig15.frequency_shift",
-        "Fig. 15, §3.4 (derived)",
-        "2nd wheelset dominant frequency: -30 °C - +20 °C",
-        "Hz",
-        73.4 - 50.3,
-        "73.4 - 50.3 Hz",
-        "frequency_shift",
-        _n(cases=("m30", "p20"), response=WHEELSET, band=_WHOLE),
-        "difference of the frequencies of the two curves' maxima",
-        _TEMP,
-        claim=(">", 0.0),
-        derived=True,
-    ),
-    # --- Fig. 16: rail, temperatures ------------------------------------------------------------
-    PaperNumber(
-        "fig16.high_spread",
-        "Fig. 16, §3.4",
-        "rail RMS above 600 Hz: -30 / -10 / +20 °C",
-        "%",
-        None,
-        "difference less than 5 % above 600 Hz",
-        "rms_spread",
-        _n(cases=("m30", "m10", "p20"), response=RAIL, band=(600.0, 1000.0)),
-        "100 (largest/smallest rail RMS over 600-1000 Hz - 1)",
-        "Both below 5 % (the paper's 5 % is a bound, checked as a finding).",
-        claim=("<", 5.0),
-    ),
-    PaperNumber(
-        "fig16.low_spread",
-        "Fig. 16, §3.4",
-        "rail RMS 0.5-200 Hz: -30 / -10 / +20 °C",
-        "%",
-        None,
-        "temperature affects the rail within 200 Hz",
-        "rms_spread",
-        _n(cases=("m30", "m10", "p20"), response=RAIL, band=(0.5, 200.0)),
-        "100 (largest/smallest rail RMS over 0.5-200 Hz - 1)",
-        claim=(">", 5.0),
-    ),
-    # --- Abstract and Conclusion 4: the headline ------------------------------------------
-    PaperNumber(
-        "headline.peak_increase",
-        "Abstract, Conclusion 4",
-        "largest wheelset peak increase (all frequency-dependent cases / constant)",
-        "-",
-        3.3,
-        "3.3 times at least",
-        "headline_ratio",
-        _n(reference="constant", cases=("freqdep", "m30", "m10", "p20"), response=WHEELSET),
-        "max over the frequency-dependent cases of the 2nd-wheelset peak, divided by the "
-        "constant case's peak",
-        "Not rebuildable from the paper's own numbers (63.4/8.82 = 7.19, 63.4/13.1 = 4.84, "
-        "27.5/8.82 = 3.12): a printing or bookkeeping error in the paper. Our definition is "
-        "stated in the reading column.",
-    ),
-    PaperNumber(
-        "headline.frequency_increase",
-        "Abstract, Conclusion 4",
-        "largest increase of the wheelset 1st dominant frequency",
-        "Hz",
-        20.6,
-        "20.6 Hz or more",
-        "headline_shift",
-        _n(reference="constant", cases=("freqdep", "m30", "m10", "p20"), response=WHEELSET),
-        "max over the frequency-dependent cases of the 2nd-wheelset dominant frequency, minus "
-        "the constant case's",
-        "Not rebuildable from the paper's own numbers (73.4 - 47.9 = 25.5, 73.4 - 50.3 = "
-        "23.1 Hz). " + _TEMP_SHORT,
-    ),
-)
+    for part in parts:
+        if part.startswith("@") and part[1:] not in notes:
+            raise r.error(f, part, f"'@' and a [notes] entry, one of {', '.join(notes)}")
+    return " ".join(notes[p[1:]] if p.startswith("@") else p for p in parts)
+
+
+def _paper(r: _Reader, t: dict[str, Any], f: str, unit: str) -> tuple[float | None, bool]:
+    """The paper's value and whether it is derived (computed from two printed numbers)."""
+    derived = t.get("derived", False)
+    if not isinstance(derived, bool):
+        raise r.error(f"{f}.derived", derived, "true or false")
+    if "paper_expr" not in t:
+        if derived:
+            raise r.error(f"{f}.paper_expr", None, "required with derived = true")
+        return (r.number(t["paper"], f"{f}.paper", unit) if "paper" in t else None), False
+    expr = t["paper_expr"]
+    allowed = "[a, op, b]: two numbers the paper prints, op one of " + ", ".join(_EXPR_OPS)
+    if "paper" in t:
+        raise r.error(f"{f}.paper", t["paper"], "not together with paper_expr")
+    if not derived:
+        raise r.error(f"{f}.derived", derived, "true with paper_expr (a computed value)")
+    if not isinstance(expr, list) or len(expr) != 3 or expr[1] not in _EXPR_OPS:
+        raise r.error(f"{f}.paper_expr", expr, allowed)
+    a = r.number(expr[0], f"{f}.paper_expr[0]", "as printed")
+    b = r.number(expr[2], f"{f}.paper_expr[2]", "as printed")
+    if expr[1] == "/" and b == 0.0:
+        raise r.error(f"{f}.paper_expr", expr, "a non-zero divisor")
+    return _EXPR_OPS[expr[1]](a, b), True
+
+
+def _number(
+    r: _Reader,
+    f: str,
+    t: dict[str, Any],
+    case_keys: Sequence[str],
+    responses: Sequence[str],
+    notes: Mapping[str, str],
+) -> PaperNumber:
+    unit = r.string(t["unit"], f"{f}.unit")
+    metric = r.choice(t["metric"], f"{f}.metric", list(METRICS), "a reading function in METRICS")
+    paper, derived = _paper(r, t, f, unit)
+    claim: tuple[str, float] | None = None
+    if "claim" in t:
+        c = t["claim"]
+        if not isinstance(c, list) or len(c) != 2 or c[0] not in _CLAIM_OPS:
+            raise r.error(f"{f}.claim", c, f"[op, bound], op one of {', '.join(_CLAIM_OPS)}")
+        claim = (c[0], r.number(c[1], f"{f}.claim[1]", unit))
+    elif paper is None:
+        raise r.error(f"{f}.claim", None, "required without paper or paper_expr")
+    return PaperNumber(
+        id=r.string(t["id"], f"{f}.id"),
+        source=r.string(t["source"], f"{f}.source"),
+        quantity=r.string(t["quantity"], f"{f}.quantity"),
+        unit=unit,
+        paper=paper,
+        paper_text=r.string(t["paper_text"], f"{f}.paper_text"),
+        metric=metric,
+        args=_args(r, t["args"], f"{f}.args", metric, case_keys, responses),
+        reading=r.string(t["reading"], f"{f}.reading"),
+        note=_note(r, t["note"], f"{f}.note", notes) if "note" in t else "",
+        claim=claim,
+        derived=derived,
+    )
+
+
+def _study(r: _Reader, data: dict[str, Any]) -> Study:
+    r.table(data, "(top level)", _TOP_REQUIRED, _TOP_OPTIONAL)
+    components = {
+        k: r.string(v, f"components.{k}")
+        for k, v in r.table(data["components"], "components", _COMPONENTS).items()
+    }
+    responses = list(components.values())
+    raw_notes = data.get("notes", {})
+    if not isinstance(raw_notes, dict):
+        raise r.error("notes", raw_notes, "a table of named strings")
+    notes = {k: r.string(v, f"notes.{k}") for k, v in raw_notes.items()}
+    cases = _cases(r, data["case"])
+    case_keys = [c.key for c in cases]
+    comparisons = _comparisons(r, data["comparison"], case_keys)
+    by_key = {c.key: c for c in comparisons}
+    figures = tuple(
+        _figure(r, f, t, by_key, responses)
+        for f, t in r.tables(data["figure"], "figure", _FIGURE_REQUIRED, _FIGURE_OPTIONAL)
+    )
+    r.unique([str(g.number) for g in figures], "figure", "number")
+    numbers = tuple(
+        _number(r, f, t, case_keys, responses, notes)
+        for f, t in r.tables(data["number"], "number", _NUMBER_REQUIRED, _NUMBER_OPTIONAL)
+    )
+    r.unique([n.id for n in numbers], "number", "id")
+    return Study(
+        cases=cases,
+        comparisons=comparisons,
+        figures=figures,
+        numbers=numbers,
+        components=MappingProxyType(components),
+        psd_unit=r.string(data["psd_unit"], "psd_unit"),
+        notes=MappingProxyType(notes),
+    )
+
+
+def load_study(path: str | Path | None = None) -> Study:
+    """Read and check a study file (TOML).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path, optional
+        The study file; by default the shipped :data:`DATA_FILE`. Its keys are described
+        in its header comment and by the records of this module (frequencies in Hz,
+        PSDs in m^2/s^4/Hz).
+
+    Returns
+    -------
+    Study
+        Its cases, comparisons, figures and numbers, in file order; arrays as tuples,
+        every ``args`` a read-only mapping, every ``note`` with its ``@name`` references
+        resolved and every derived paper value computed from its ``paper_expr``.
+
+    Raises
+    ------
+    CaseError
+        On an unreadable file, invalid TOML, an unknown or missing key, a wrong type, or an
+        unknown metric, metric argument, case, comparison, response or note. The field is
+        named with the file and a 0-based index, e.g. ``paper_wang2017.toml: number[12].metric``.
+    """
+    if path is None:
+        name = DATA_FILE
+        text = resources.files("railvib.reproduce").joinpath(DATA_FILE).read_text(encoding="utf-8")
+    else:
+        path = Path(path)
+        name = path.name
+        try:
+            text = path.read_text(encoding="utf-8")
+        except OSError as exc:
+            raise CaseError(name, str(path), f"a readable TOML file ({exc.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(name, str(path or name), f"valid TOML ({exc})") from None
+    return _study(_Reader(name), data)
+
+
+_STUDY = load_study()
+
+#: the computed cases of the study
+CASES: tuple[StudyCase, ...] = _STUDY.cases
+#: the sets of cases the paper overlays (sections 3.3 and 3.4)
+COMPARISONS: tuple[Comparison, ...] = _STUDY.comparisons
+#: the paper's Figs. 9-16
+FIGURES: tuple[FigureSpec, ...] = _STUDY.figures
+#: every number the paper states, with how we read it
+PAPER_NUMBERS: tuple[PaperNumber, ...] = _STUDY.numbers
+
+#: response read as the paper's car body
+BODY: str = _STUDY.components["body"]
+#: response read as the paper's bogie (the front bogie)
+BOGIE: str = _STUDY.components["bogie"]
+#: response read as the paper's wheelset (the 2nd wheelset)
+WHEELSET: str = _STUDY.components["wheelset"]
+#: response read as the paper's rail (under the 2nd wheel)
+RAIL: str = _STUDY.components["rail"]
+#: unit of the PSDs
+PSD_UNIT: str = _STUDY.psd_unit
