@@ -33,7 +33,7 @@ class FrequencyGrid:
     f: NDArray[np.float64] = field(repr=False)
 
     def __post_init__(self) -> None:
-        f = np.asarray(self.f, dtype=float)
+        f = np.array(self.f, dtype=float)  # a copy: the caller's array stays theirs
         if f.ndim != 1 or f.size == 0:
             raise CaseError("frequency", f"array of shape {f.shape}", "a non-empty 1-D array (Hz)")
         if not np.all(np.isfinite(f)) or np.any(f <= 0.0):
@@ -53,8 +53,8 @@ class FrequencyGrid:
     def linear(cls, f_min: float, f_max: float, step: float) -> FrequencyGrid:
         """Evenly spaced grid from `f_min` to `f_max` (inclusive where it lands) in Hz."""
         _check_band(f_min, f_max)
-        if not step > 0:
-            raise CaseError("frequency.step", step, "must be > 0 (Hz)")
+        if not (np.isfinite(step) and step > 0):
+            raise CaseError("frequency.step", step, "must be a finite number > 0 (Hz)")
         n = int(np.floor((f_max - f_min) / step + 1e-9)) + 1
         return cls(np.asarray(f_min + step * np.arange(n), dtype=np.float64))
 
@@ -62,8 +62,8 @@ class FrequencyGrid:
     def logarithmic(cls, f_min: float, f_max: float, n: int) -> FrequencyGrid:
         """`n` log-spaced frequencies from `f_min` to `f_max` in Hz."""
         _check_band(f_min, f_max)
-        if int(n) < 2:
-            raise CaseError("frequency.n", n, "must be >= 2")
+        if not (isinstance(n, int | np.integer | float) and np.isfinite(n) and int(n) >= 2):
+            raise CaseError("frequency.n", n, "must be an integer >= 2")
         return cls(np.geomspace(f_min, f_max, int(n)))
 
     @property
