@@ -21,6 +21,7 @@ declarations, and nowhere else, railvib derives:
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 from collections.abc import Callable, Iterator, Mapping, Sequence
@@ -40,13 +41,17 @@ __all__ = [
     "check_parameters",
     "check_value",
     "declared_parameters",
+    "merge_tables",
     "parameter",
     "resolve_paths",
     "take_table",
 ]
 
 T = TypeVar("T")
-Kind = Literal["number", "integer", "boolean", "text", "numbers", "path", "member"]
+
+#: the keys that name a family member in a table (``Registry.tag`` of every family)
+TAG_KEYS = ("model", "type")
+Kind = Literal["number", "integer", "boolean", "text", "numbers", "path", "member", "table"]
 
 
 class _Required:
@@ -84,7 +89,8 @@ class Parameter:
     kind : str
         ``number`` (finite float), ``integer``, ``boolean``, ``text``, ``numbers``
         (tuple of finite floats), ``path`` (file, resolved relative to the case
-        file) or ``member`` (a nested table of family `family`).
+        file), ``member`` (a nested table of family `family`) or ``table`` (a nested
+        table of the fixed dataclass `table`).
     default : object
         Value when the key is omitted; :data:`REQUIRED` when it must be given.
     gt, ge, lt, le : float, optional
@@ -102,6 +108,8 @@ class Parameter:
         Attribute and constructor argument, when it differs from `key`.
     family : Registry, optional
         Family of a ``member`` parameter.
+    table : type, optional
+        Dataclass of a ``table`` parameter (its fields declared with :func:`parameter`).
     """
 
     key: str
@@ -119,6 +127,7 @@ class Parameter:
     log: bool = False
     attr: str | None = None
     family: Registry[Any] | None = field(default=None, repr=False, compare=False)
+    table: type | None = field(default=None, repr=False, compare=False)
 
     @property
     def name(self) -> str:
@@ -164,6 +173,7 @@ def parameter(
     typical: tuple[float, float] | None = None,
     log: bool = False,
     family: Registry[Any] | None = None,
+    table: type | None = None,
 ) -> Any:
     """Declare a dataclass field as a member parameter (see :class:`Parameter`).
 
@@ -190,6 +200,7 @@ def parameter(
         "typical": typical,
         "log": log,
         "family": family,
+        "table": table,
     }
     metadata = {"railvib": spec}
     if default is REQUIRED:
@@ -306,7 +317,7 @@ def _element(p: Parameter) -> Parameter:
     return dataclasses.replace(p, kind="number")
 
 
-def check_parameters(obj: Any, style: str = "must") -> None:
+def check_parameters(obj: Any, style: str = "must", prefix: str = "") -> None:
     """Check and normalise every declared parameter of the dataclass instance `obj`.
 
     Called by the ``__post_init__`` of a family's base class, so a member built
@@ -318,14 +329,20 @@ def check_parameters(obj: Any, style: str = "must") -> None:
         A family member.
     style : {"must", "finite"}
         Error wording (see :func:`check_value`).
+    prefix : str
+        Prepended to the key in errors (``"track.rail."`` for a part with a fixed place).
     """
     for p in declared_parameters(type(obj)):
         value = getattr(obj, p.name)
+        if value is None and p.default is None:
+            continue  # an optional parameter left out
         if p.kind == "member":
             if p.family is not None and not isinstance(value, p.family.base):
-                raise CaseError(p.key, value, f"a {p.family.base.__name__} ({p.unit})")
+                raise CaseError(prefix + p.key, value, f"a {p.family.base.__name__} ({p.unit})")
             continue
-        object.__setattr__(obj, p.name, check_value(p, value, p.key, style))
+        if p.kind == "table":
+            continue  # a part checked by its own class
+        object.__setattr__(obj, p.name, check_value(p, value, prefix + p.key, style))
 
 
 def take_table(
@@ -428,10 +445,14 @@ class Registry(Generic[T]):
     def __init__(
         self, family: str, base: type, tag: str, *, style: Literal["must", "finite"] = "must"
     ) -> None:
+        if tag not in TAG_KEYS:
+            raise ValueError(f"a family's tag is one of {TAG_KEYS} (merge_tables relies on it)")
         self.family = family
         self.base = base
         self.tag = tag
         self.style = style
+        #: the value shown for a missing key (the spectra's legacy wording shows None)
+        self._missing: Any = None if style == "finite" else "<missing>"
         self._members: dict[str, Member[T]] = {}
         self._aliases: dict[str, str] = {}
         self.extra_tables: dict[str, ExtraTable] = {}
@@ -551,9 +572,7 @@ class Registry(Generic[T]):
             raise CaseError(field, d, f"a table with a {self.tag!r} key")
         if self.tag not in d:
             raise CaseError(
-                f"{field}.{self.tag}",
-                None,
-                f"required (missing); one of {', '.join(self._members)}",
+                f"{field}.{self.tag}", self._missing, f"required; one of {', '.join(self._members)}"
             )
         member = self.get(d[self.tag], field)
         params = {k: v for k, v in d.items() if k != self.tag and k not in self.extra_tables}
@@ -563,7 +582,7 @@ class Registry(Generic[T]):
                 raise CaseError(
                     f"{field}.{key}",
                     value,
-                    f"unknown key for {self.family} {member.name!r}; allowed here: "
+                    "unknown key; allowed here: "
                     + (", ".join([*allowed, *self.extra_tables]) or "no other keys"),
                 )
         kwargs: dict[str, Any] = {}
@@ -571,14 +590,17 @@ class Registry(Generic[T]):
             if p.key not in params:
                 if p.required:
                     unit = f" ({p.unit})" if p.unit not in ("", "-") else ""
-                    raise CaseError(
-                        f"{field}.{p.key}", None, f"required for {member.name!r} (missing){unit}"
-                    )
+                    raise CaseError(f"{field}.{p.key}", self._missing, f"required{unit}")
                 continue
             value = params[p.key]
             if p.kind == "member":
                 assert p.family is not None, "a member parameter names its family"
                 value = p.family.from_dict(value, f"{field}.{p.key}")
+            elif p.kind == "table":
+                assert p.table is not None, "a table parameter names its dataclass"
+                value = p.table(
+                    **take_table(value, declared_parameters(p.table), f"{field}.{p.key}")
+                )
             kwargs[p.name] = value
         try:
             obj = member.build(**kwargs)
@@ -710,6 +732,34 @@ def _parameter_table(params: Sequence[Parameter]) -> list[str]:
         allowed = "a table" if p.kind == "member" else p.describe_allowed()
         rows.append(f"| `{p.key}` | {p.unit or '-'} | {default} | {allowed} | {p.doc} |")
     return [*rows, ""]
+
+
+def merge_tables(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
+    """Deep-merge `override` onto a copy of `base`, table by table.
+
+    A table of `override` that names a family member (it holds a tag key of
+    :data:`TAG_KEYS`, ``model`` or ``type``) replaces the table of `base`
+    wholesale, since another member takes other keys; other tables merge key by key.
+
+    Parameters
+    ----------
+    base, override : mapping
+        Parsed TOML tables (e.g. a preset and a user's case file).
+
+    Returns
+    -------
+    dict
+        A new dict; neither input is modified.
+    """
+    out = copy.deepcopy(dict(base))
+    for key, value in override.items():
+        old = out.get(key)
+        names_member = isinstance(value, Mapping) and any(tag in value for tag in TAG_KEYS)
+        if isinstance(value, Mapping) and isinstance(old, Mapping) and not names_member:
+            out[key] = merge_tables(old, value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
 
 
 def resolve_paths(table: Any, registry: Registry[Any], base_dir: Path) -> None:

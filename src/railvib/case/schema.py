@@ -11,7 +11,12 @@ from __future__ import annotations
 from typing import Any, Literal
 
 import tomli_w
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import Field, model_validator
+
+from railvib.case.sections import Section, section_model, table_section
+from railvib.errors import CaseError
+from railvib.track import DEFAULT_TRACK_MODEL, TRACKS, Rail
+from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES
 
 __all__ = [
     "Case",
@@ -33,78 +38,26 @@ def quantity(
     return Field(..., gt=gt, ge=ge, description=doc, json_schema_extra={"unit": unit}, **kw)
 
 
-class _Section(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, strict=False)
+#: ``[vehicle]``: the parameters of the default vehicle model, declared with it
+VehicleSection: Any = section_model(
+    "VehicleSection",
+    VEHICLES.get(DEFAULT_VEHICLE_MODEL).parameters,
+    "The 10-DOF pitch-plane car (whole car; suspensions per wheelset / per bogie).",
+    VEHICLES.get(DEFAULT_VEHICLE_MODEL).build,
+)
+
+#: ``[track.rail]``: the rail beam, declared with :class:`~railvib.track.Rail`
+RailSection: Any = table_section(Rail)
+
+#: ``[track]``: the parameters of the default track model, declared with it
+TrackSection: Any = section_model(
+    "TrackSection",
+    TRACKS.get(DEFAULT_TRACK_MODEL).parameters,
+    "Rail on discrete railpads at every sleeper, rigid below.",
+)
 
 
-class VehicleSection(_Section):
-    """The 10-DOF pitch-plane car (whole car; suspensions per wheelset / per bogie)."""
-
-    carbody_mass: float = quantity("kg", "car body mass M_c")
-    carbody_pitch_inertia: float = quantity("kg m^2", "car body pitch inertia J_c")
-    bogie_mass: float = quantity("kg", "mass of one bogie frame M_t")
-    bogie_pitch_inertia: float = quantity("kg m^2", "pitch inertia of one bogie J_t")
-    wheelset_mass: float = quantity("kg", "mass of one wheelset M_w")
-    primary_stiffness: float = quantity("N/m", "primary suspension stiffness per wheelset K_s1")
-    primary_damping: float = quantity("N s/m", "primary damping per wheelset C_s1", ge=0.0)
-    secondary_stiffness: float = quantity("N/m", "secondary suspension stiffness per bogie K_s2")
-    secondary_damping: float = quantity("N s/m", "secondary damping per bogie C_s2", ge=0.0)
-    bogie_half_spacing: float = quantity("m", "half the distance between bogie centres l_c")
-    wheelset_half_spacing: float = quantity("m", "half the wheelbase of a bogie l_t")
-
-    @model_validator(mode="after")
-    def _geometry(self) -> VehicleSection:
-        if self.wheelset_half_spacing >= self.bogie_half_spacing:
-            from railvib.errors import CaseError
-
-            raise CaseError(
-                "vehicle.wheelset_half_spacing",
-                self.wheelset_half_spacing,
-                f"must be < bogie_half_spacing = {self.bogie_half_spacing} (m)",
-            )
-        return self
-
-
-class RailSection(_Section):
-    """Euler-Bernoulli rail."""
-
-    bending_stiffness: float = quantity("N m^2", "bending stiffness EI of the rail beam")
-    mass_per_length: float = quantity("kg/m", "mass per unit length of the rail beam")
-    loss_factor: float = quantity("-", "rail loss factor eta_r (EI -> EI (1 + i eta_r))", ge=0.0)
-    shear_stiffness: float | None = Field(
-        None,
-        gt=0.0,
-        description="kappa G A; given, the rail is a Timoshenko beam (CHN60: 2.45e8), "
-        "omitted, an Euler-Bernoulli beam as in the paper",
-        json_schema_extra={"unit": "N"},
-    )
-    rotary_inertia: float = Field(
-        0.0,
-        ge=0.0,
-        description="rho I, rotary inertia per length of a Timoshenko rail (CHN60: 0.2525)",
-        json_schema_extra={"unit": "kg m"},
-    )
-
-
-class TrackSection(_Section):
-    """Rail on discrete railpads at every sleeper, rigid below."""
-
-    sleeper_spacing: float = quantity("m", "sleeper spacing d")
-    rail: RailSection
-    pad: dict[str, Any] = Field(
-        ...,
-        description="railpad model: model = spring_damper | hysteretic | log_linear | tabulated | "
-        "constant_phase | zener | fractional_zener | prony | ..., plus its parameters",
-    )
-    pad_temperature_c: float | None = Field(
-        None,
-        gt=-273.15,
-        description="pad temperature used by temperature-dependent pad models",
-        json_schema_extra={"unit": "degC"},
-    )
-
-
-class ContactSection(_Section):
+class ContactSection(Section):
     """Linearised Hertz contact, one spring per wheelset."""
 
     contact_constant: float = quantity("m/N^(2/3)", "Hertz contact constant G")
@@ -120,7 +73,7 @@ class ContactSection(_Section):
     )
 
 
-class FrequencySection(_Section):
+class FrequencySection(Section):
     """The frequency grid of the analysis."""
 
     f_min: float = quantity("Hz", "lowest frequency")
@@ -133,8 +86,6 @@ class FrequencySection(_Section):
 
     @model_validator(mode="after")
     def _band(self) -> FrequencySection:
-        from railvib.errors import CaseError
-
         if self.f_max <= self.f_min:
             raise CaseError("frequency.f_max", self.f_max, f"must be > f_min = {self.f_min} (Hz)")
         if self.spacing == "linear" and self.step is None:
@@ -144,7 +95,7 @@ class FrequencySection(_Section):
         return self
 
 
-class OutputSection(_Section):
+class OutputSection(Section):
     """What the summary reports."""
 
     rms_bands: list[tuple[float, float]] = Field(
@@ -155,15 +106,13 @@ class OutputSection(_Section):
 
     @model_validator(mode="after")
     def _bands(self) -> OutputSection:
-        from railvib.errors import CaseError
-
         for i, (lo, hi) in enumerate(self.rms_bands):
             if not (0 <= lo < hi):
                 raise CaseError(f"output.rms_bands[{i}]", [lo, hi], "need 0 <= f_lo < f_hi (Hz)")
         return self
 
 
-class Case(_Section):
+class Case(Section):
     """A complete railvib case: vehicle, track, contact, operation, irregularity, grid."""
 
     title: str = Field("railvib case", description="free text shown in outputs")

@@ -11,6 +11,7 @@ from importlib import resources
 from typing import Any
 
 from railvib.errors import CaseError
+from railvib.registry import merge_tables
 
 __all__ = ["DEFAULT_PRESET", "list_presets", "load_preset", "preset_text"]
 
@@ -47,6 +48,4 @@ def load_preset(name: str, _chain: tuple[str, ...] = ()) -> dict[str, Any]:
     parent = data.pop("preset", None)
     if parent is None:
         return data
-    from railvib.case.load import merge_case_dicts
-
-    return merge_case_dicts(load_preset(parent, (*_chain, name)), data)
+    return merge_tables(load_preset(parent, (*_chain, name)), data)

@@ -1,5 +1,6 @@
 """The rail as an infinite periodic structure (symplectic / wave method)."""
 
+from railvib.track.base import DEFAULT_TRACK_MODEL, TRACKS, TrackModel
 from railvib.track.periodic import PeriodicTrack, Rail, TrackWaves
 
-__all__ = ["PeriodicTrack", "Rail", "TrackWaves"]
+__all__ = ["DEFAULT_TRACK_MODEL", "TRACKS", "PeriodicTrack", "Rail", "TrackModel", "TrackWaves"]

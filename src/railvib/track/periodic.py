@@ -22,7 +22,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError, SolverWarning
-from railvib.pads.base import PadModel
+from railvib.pads.base import PADS, PadModel
+from railvib.registry import Parameter, check_parameters, parameter
+from railvib.track.base import TRACKS, TrackModel
 from railvib.track.beam import (
     dynamic_stiffness,
     field_transfer,
@@ -60,27 +62,33 @@ class Rail:
         Timoshenko beam. CHN60: 7850 x 3.217e-5 = 0.2525.
     """
 
-    bending_stiffness: float
-    mass_per_length: float
-    loss_factor: float = 0.0
-    shear_stiffness: float | None = None
-    rotary_inertia: float = 0.0
+    bending_stiffness: float = parameter(
+        "N m^2", "bending stiffness EI of the rail beam", gt=0.0, typical=(3e6, 1.2e7), log=True
+    )
+    mass_per_length: float = parameter(
+        "kg/m", "mass per unit length of the rail beam", gt=0.0, typical=(40.0, 80.0)
+    )
+    loss_factor: float = parameter(
+        "-", "rail loss factor eta_r (EI -> EI (1 + i eta_r))", default=0.0, ge=0.0
+    )
+    shear_stiffness: float | None = parameter(
+        "N",
+        "kappa G A; given, the rail is a Timoshenko beam (CHN60: 2.45e8), omitted, an "
+        "Euler-Bernoulli beam as in the paper",
+        default=None,
+        kind="number",
+        gt=0.0,
+    )
+    rotary_inertia: float = parameter(
+        "kg m",
+        "rho I, rotary inertia per length of a Timoshenko rail (CHN60: 0.2525)",
+        default=0.0,
+        ge=0.0,
+    )
 
     def __post_init__(self) -> None:
-        for name, value, unit in (
-            ("track.rail.bending_stiffness", self.bending_stiffness, "N m^2"),
-            ("track.rail.mass_per_length", self.mass_per_length, "kg/m"),
-        ):
-            if not (np.isfinite(value) and value > 0):
-                raise CaseError(name, value, f"must be > 0 ({unit})")
-        if not (np.isfinite(self.loss_factor) and self.loss_factor >= 0):
-            raise CaseError("track.rail.loss_factor", self.loss_factor, "must be >= 0")
-        shear = self.shear_stiffness
-        if shear is not None and not (np.isfinite(shear) and shear > 0):
-            raise CaseError("track.rail.shear_stiffness", shear, "must be > 0 (N)")
-        if not (np.isfinite(self.rotary_inertia) and self.rotary_inertia >= 0):
-            raise CaseError("track.rail.rotary_inertia", self.rotary_inertia, "must be >= 0 (kg m)")
-        if self.rotary_inertia > 0 and shear is None:
+        check_parameters(self, "must", prefix="track.rail.")
+        if self.rotary_inertia > 0 and self.shear_stiffness is None:
             raise CaseError(
                 "track.rail.rotary_inertia",
                 self.rotary_inertia,
@@ -129,7 +137,7 @@ class TrackWaves:
 
 
 @dataclass(frozen=True)
-class PeriodicTrack:
+class PeriodicTrack(TrackModel):
     """Rail on discrete railpads at every sleeper, rigid below (embedded sleepers).
 
     Parameters
@@ -470,3 +478,30 @@ def _energy_flux(vec: NDArray[np.complex128]) -> NDArray[np.float64]:
     """Sign-carrying power flow to the right, ``Im(w''' conj(w) - w'' conj(w'))``, per wave."""
     w, w1, w2, w3 = vec[:, 0], vec[:, 1], vec[:, 2], vec[:, 3]
     return np.imag(w3 * np.conj(w) - w2 * np.conj(w1))
+
+
+#: keys of the ``[track]`` table of the rigid-base track
+RIGID_BASE_PARAMETERS = (
+    Parameter("sleeper_spacing", "m", "sleeper spacing d", gt=0.0, typical=(0.5, 0.75)),
+    Parameter("rail", "", "the rail beam", "table", table=Rail),
+    Parameter("pad", "N/m", "railpad model of one rail seat", "member", family=PADS),
+    Parameter(
+        "pad_temperature_c",
+        "degC",
+        "pad temperature used by temperature-dependent pad models",
+        default=None,
+        gt=-273.15,
+    ),
+)
+
+
+def rigid_base_track(
+    sleeper_spacing: float, rail: Rail, pad: PadModel, pad_temperature_c: float | None = None
+) -> PeriodicTrack:
+    """The rigid-base track of a ``[track]`` table's checked values (see :class:`PeriodicTrack`)."""
+    return PeriodicTrack(rail, pad, sleeper_spacing, pad_temperature_c)
+
+
+TRACKS.register("rigid_base", parameters=RIGID_BASE_PARAMETERS, build=rigid_base_track)(
+    PeriodicTrack
+)

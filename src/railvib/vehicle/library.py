@@ -4,15 +4,27 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from railvib.errors import CaseError
+from railvib.registry import parameter
 from railvib.vehicle.assembly import Vehicle
+from railvib.vehicle.base import VEHICLES, VehicleModel
 from railvib.vehicle.parts import Attachment, RigidBody, Suspension, Wheel
 
 __all__ = ["PitchPlaneParameters", "pitch_plane_10dof"]
 
 
+def _positive(unit: str, doc: str, typical: tuple[float, float]) -> float:
+    """A parameter that must be > 0, plausible over `typical` (log-uniform)."""
+    return parameter(unit, doc, gt=0.0, typical=typical, log=True)
+
+
+@VEHICLES.register("pitch_plane_10dof")
 @dataclass(frozen=True)
-class PitchPlaneParameters:
-    """Parameters of the 10-DOF pitch-plane car (paper Table 1, whole car).
+class PitchPlaneParameters(VehicleModel):
+    """The 10-DOF pitch-plane car: body and two bogies in bounce and pitch, four wheelsets.
+
+    Paper Table 1 values are for the whole car; suspensions are per wheelset
+    (primary) and per bogie (secondary).
 
     Parameters
     ----------
@@ -40,17 +52,42 @@ class PitchPlaneParameters:
         l_t, half the wheelbase of a bogie, m.
     """
 
-    carbody_mass: float
-    carbody_pitch_inertia: float
-    bogie_mass: float
-    bogie_pitch_inertia: float
-    wheelset_mass: float
-    primary_stiffness: float
-    primary_damping: float
-    secondary_stiffness: float
-    secondary_damping: float
-    bogie_half_spacing: float
-    wheelset_half_spacing: float
+    carbody_mass: float = _positive("kg", "car body mass M_c", (1e4, 6e4))
+    carbody_pitch_inertia: float = _positive("kg m^2", "car body pitch inertia J_c", (2e5, 3e6))
+    bogie_mass: float = _positive("kg", "mass of one bogie frame M_t", (1e3, 4e3))
+    bogie_pitch_inertia: float = _positive("kg m^2", "pitch inertia of one bogie J_t", (1e3, 5e3))
+    wheelset_mass: float = _positive("kg", "mass of one wheelset M_w", (8e2, 2.5e3))
+    primary_stiffness: float = _positive(
+        "N/m", "primary suspension stiffness per wheelset K_s1", (3e5, 5e6)
+    )
+    primary_damping: float = parameter(
+        "N s/m", "primary damping per wheelset C_s1", ge=0.0, typical=(1e2, 5e4), log=True
+    )
+    secondary_stiffness: float = _positive(
+        "N/m", "secondary suspension stiffness per bogie K_s2", (1e5, 1e6)
+    )
+    secondary_damping: float = parameter(
+        "N s/m", "secondary damping per bogie C_s2", ge=0.0, typical=(1e3, 1e5), log=True
+    )
+    bogie_half_spacing: float = parameter(
+        "m", "half the distance between bogie centres l_c", gt=0.0, typical=(4.0, 10.0)
+    )
+    wheelset_half_spacing: float = parameter(
+        "m", "half the wheelbase of a bogie l_t", gt=0.0, typical=(0.9, 1.5)
+    )
+
+    def validate(self) -> None:
+        """The wheelsets of a bogie lie between the bogie centres: ``l_t < l_c``."""
+        if self.wheelset_half_spacing >= self.bogie_half_spacing:
+            raise CaseError(
+                "wheelset_half_spacing",
+                self.wheelset_half_spacing,
+                f"must be < bogie_half_spacing = {self.bogie_half_spacing} (m)",
+            )
+
+    def vehicle(self) -> Vehicle:
+        """The assembled 10-DOF car (see :func:`pitch_plane_10dof`)."""
+        return pitch_plane_10dof(self)
 
 
 def pitch_plane_10dof(p: PitchPlaneParameters) -> Vehicle:
