@@ -7,6 +7,8 @@ Examples
 ...     "case": {"preset": "wang2017_metro"},
 ...     "axes": [{"field": "speed_kmh", "values": [40.0, 80.0]}],
 ... })
+>>> spec.axes[0].values
+(40.0, 80.0)
 >>> SweepLayout(spec).shape
 (2,)
 """
@@ -20,14 +22,16 @@ from railvib.sweep.dataset import (
 )
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.runner import SweepInterrupted, run_sweep
-from railvib.sweep.spec import load_sweep, sweep_from_dict
+from railvib.sweep.spec import SweepAxis, SweepSpec, load_sweep, sweep_from_dict
 from railvib.sweep.store import ChunkStore, SweepMismatchError, fingerprint
 
 __all__ = [
     "ChunkStore",
     "SweepInterrupted",
     "SweepLayout",
+    "SweepAxis",
     "SweepMismatchError",
+    "SweepSpec",
     "compute_chunk",
     "fingerprint",
     "frf_many_speeds",

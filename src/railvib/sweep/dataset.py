@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -17,6 +16,7 @@ from railvib.results.stats import summary_attrs, summary_names
 from railvib.results.variables import VARIABLES
 from railvib.sweep.batch import case_labels
 from railvib.sweep.layout import SweepLayout
+from railvib.sweep.spec import SweepSpec
 
 __all__ = [
     "field_unit",
@@ -63,14 +63,12 @@ def summary_variables(ds: xr.Dataset) -> list[str]:
     return [str(n) for n, da in ds.data_vars.items() if "frequency" not in da.dims]
 
 
-def sweep_dataset(
-    spec: dict[str, Any], arrays: dict[str, NDArray[Any]], fingerprint: str
-) -> xr.Dataset:
+def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint: str) -> xr.Dataset:
     """Label the assembled arrays of a sweep.
 
     Parameters
     ----------
-    spec : dict
+    spec : SweepSpec
         The resolved sweep.
     arrays : dict of numpy.ndarray
         Per-frequency variables ``(*sweep_shape, n_freq[, n_resp])`` and
@@ -84,7 +82,7 @@ def sweep_dataset(
         Dimensions ``frequency``, ``response`` / ``wheel``, then the sweep dimensions.
     """
     layout = SweepLayout(spec)
-    base = case_from_dict(spec["base_case"])
+    base = case_from_dict(spec.base_case_dict())
     system = build_system(base)
     f = build_grid(base).f
     labels = case_labels(system)
@@ -95,34 +93,29 @@ def sweep_dataset(
         "response": ("response", labels, {"long_name": "response"}),
         "wheel": ("wheel", np.arange(1, n_wheel + 1), {"long_name": "wheel"}),
     }
-    for ax in spec["axes"]:
-        values = ax["coords"]
-        attrs = {
-            "long_name": ax["field"],
-            "units": field_unit(ax["field"]),
-            "case_field": ax["field"],
-        }
-        coords[ax["dim"]] = (ax["group"], _coord_array(values), attrs)
+    for ax in spec.axes:
+        attrs = {"long_name": ax.field, "units": field_unit(ax.field), "case_field": ax.field}
+        coords[ax.dim] = (ax.group, _coord_array(list(ax.coords)), attrs)
     data: dict[str, Any] = {}
     sweep_dims = tuple(dims)
-    for name in spec["variables"]:
+    for name in spec.variables:
         var = VARIABLES[name]
         da = xr.DataArray(arrays[name], dims=(*sweep_dims, *var.dims))
         data[name] = da.transpose(*var.dims, *sweep_dims).assign_attrs(var.attrs)
-    summarised = spec["summary_variable"]
-    for name in summary_names(spec["base_case"]["output"]["rms_bands"]):
+    summarised = spec.summary_variable
+    for name in summary_names(spec.rms_bands):
         da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, "response"))
         attrs = summary_attrs(name, summarised, VARIABLES[summarised].units)
         data[name] = da.transpose("response", *sweep_dims).assign_attrs(attrs)
     attrs = {
-        "title": spec["title"],
+        "title": spec.title,
         "psd_convention": PSD_CONVENTION,
         "railvib_version": railvib_version(),
         "sweep_fingerprint": fingerprint,
-        "sweep_spec_json": json.dumps(spec, sort_keys=True, default=str),
+        "sweep_spec_json": spec.to_json(),
         "base_case_toml": base.to_toml(),
         "sweep_dims": ",".join(dims),
-        "summary_variable": spec["summary_variable"],
+        "summary_variable": spec.summary_variable,
         "time_dependence": "exp(+i omega t)",
     }
     return xr.Dataset(data, coords=coords, attrs=attrs)

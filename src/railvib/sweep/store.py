@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 from railvib.errors import RailvibError
 from railvib.io import atomic_path, railvib_version
 from railvib.sweep.layout import SweepLayout
+from railvib.sweep.spec import SweepSpec
 
 __all__ = ["ChunkStore", "SweepMismatchError", "fingerprint"]
 
@@ -43,22 +44,24 @@ class SweepMismatchError(RailvibError):
     """The output folder holds chunks of a different sweep."""
 
 
-def fingerprint(spec: dict[str, Any]) -> str:
+def fingerprint(spec: SweepSpec) -> str:
     """SHA-256 of the resolved sweep, the contents of data files it names, and the version.
 
     Parameters
     ----------
-    spec : dict
-        A resolved sweep (:func:`railvib.sweep.spec.sweep_from_dict`).
+    spec : SweepSpec
+        A resolved sweep (:func:`railvib.sweep.spec.sweep_from_dict`); hashed as
+        :meth:`~railvib.sweep.spec.SweepSpec.as_dict`.
 
     Returns
     -------
     str
         Hex digest.
     """
-    files = {p: _file_hash(p) for p in sorted(_data_paths(spec))}
+    data = spec.as_dict()
+    files = {p: _file_hash(p) for p in sorted(_data_paths(data))}
     blob = json.dumps(
-        {"spec": spec, "files": files, "railvib": railvib_version()}, sort_keys=True, default=str
+        {"spec": data, "files": files, "railvib": railvib_version()}, sort_keys=True, default=str
     )
     return hashlib.sha256(blob.encode()).hexdigest()
 
@@ -91,11 +94,11 @@ class ChunkStore:
     ----------
     root : str or pathlib.Path
         The sweep's output folder.
-    spec : dict
+    spec : SweepSpec
         The resolved sweep.
     """
 
-    def __init__(self, root: str | Path, spec: dict[str, Any]) -> None:
+    def __init__(self, root: str | Path, spec: SweepSpec) -> None:
         self.root = Path(root)
         self.spec = spec
         self.layout = SweepLayout(spec)
@@ -153,8 +156,9 @@ class ChunkStore:
         n_done = len(list(self.chunk_dir.glob("chunk-*.npz"))) if self.chunk_dir.exists() else 0
         what = []
         old_spec = old.get("spec") or {}
+        new_spec = self.spec.as_dict()
         for key in ("base_case", "axes", "chunk_size", "variables", "summary_variable", "mode"):
-            if old_spec.get(key) != self.spec.get(key):
+            if old_spec.get(key) != new_spec.get(key):
                 what.append(key)
         if old.get("railvib_version") != self._manifest()["railvib_version"]:
             what.append("railvib version")
@@ -175,7 +179,7 @@ class ChunkStore:
             "block": list(lay.block),
             "n_cases": lay.n_cases,
             "n_chunks": lay.n_chunks,
-            "spec": self.spec,
+            "spec": self.spec.as_dict(),
         }
 
     def done(self) -> set[int]:
