@@ -17,13 +17,20 @@ from railvib.sweep.batch import compute_chunk, frf_many_speeds
 from railvib.sweep.dataset import (
     load_sweep_dataset,
     save_sweep_csv,
+    save_sweep_extras,
     save_sweep_netcdf,
     sweep_dataset,
 )
 from railvib.sweep.layout import SweepLayout
-from railvib.sweep.runner import SweepInterrupted, run_sweep
+from railvib.sweep.runner import SweepInterrupted, describe_run, run_sweep
 from railvib.sweep.spec import SweepAxis, SweepSpec, load_sweep, sweep_from_dict
-from railvib.sweep.store import ChunkStore, SweepMismatchError, fingerprint
+from railvib.sweep.store import (
+    ChunkStore,
+    SweepMismatchError,
+    default_output_folder,
+    default_plot_folder,
+    fingerprint,
+)
 
 __all__ = [
     "ChunkStore",
@@ -33,12 +40,16 @@ __all__ = [
     "SweepMismatchError",
     "SweepSpec",
     "compute_chunk",
+    "default_output_folder",
+    "default_plot_folder",
+    "describe_run",
     "fingerprint",
     "frf_many_speeds",
     "load_sweep",
     "load_sweep_dataset",
     "run_sweep",
     "save_sweep_csv",
+    "save_sweep_extras",
     "save_sweep_netcdf",
     "sweep_dataset",
     "sweep_from_dict",

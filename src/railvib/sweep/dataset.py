@@ -17,11 +17,13 @@ from railvib.results.variables import VARIABLES
 from railvib.sweep.batch import case_labels
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
+from railvib.sweep.store import CSV_NAME, NETCDF_NAME, PLOTS_NAME
 
 __all__ = [
     "field_unit",
     "load_sweep_dataset",
     "save_sweep_csv",
+    "save_sweep_extras",
     "save_sweep_netcdf",
     "summary_variables",
     "sweep_dataset",
@@ -170,3 +172,45 @@ def save_sweep_csv(ds: xr.Dataset, path: str | Path) -> Path:
     with atomic_path(path) as tmp:
         table.to_csv(tmp, float_format="%.9g")
     return path
+
+
+def save_sweep_extras(
+    ds: xr.Dataset,
+    out: str | Path,
+    *,
+    netcdf: bool = False,
+    csv: bool = False,
+    plots: bool = False,
+) -> list[Path]:
+    """Write the optional exports of a sweep into its output folder.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The sweep dataset (:func:`railvib.sweep.run_sweep`).
+    out : str or pathlib.Path
+        The sweep's output folder.
+    netcdf : bool
+        Write the whole dataset to ``OUT/sweep.nc`` (:func:`save_sweep_netcdf`).
+    csv : bool
+        Write the summary table to ``OUT/summary.csv`` (:func:`save_sweep_csv`).
+    plots : bool
+        Draw the default summary plots into ``OUT/plots``
+        (:func:`railvib.plot.sweep.save_sweep_plots`).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, in this order (netCDF, CSV, plots).
+    """
+    out = Path(out)
+    written: list[Path] = []
+    if netcdf:
+        written.append(save_sweep_netcdf(ds, out / NETCDF_NAME))
+    if csv:
+        written.append(save_sweep_csv(ds, out / CSV_NAME))
+    if plots:
+        from railvib.plot.sweep import save_sweep_plots
+
+        written.extend(save_sweep_plots(ds, out / PLOTS_NAME))
+    return written

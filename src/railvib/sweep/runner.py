@@ -23,10 +23,11 @@ from numpy.typing import NDArray
 
 from railvib.errors import RailvibError
 from railvib.sweep.batch import compute_chunk
+from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.store import ChunkStore
 
-__all__ = ["SweepInterrupted", "run_sweep"]
+__all__ = ["SweepInterrupted", "describe_run", "run_sweep"]
 
 ChunkResult = tuple[int, dict[str, NDArray[Any]]]
 
@@ -37,6 +38,28 @@ class SweepInterrupted(RailvibError):
 
 def _compute(spec: SweepSpec, chunk_id: int) -> ChunkResult:
     return chunk_id, compute_chunk(spec, chunk_id)
+
+
+def describe_run(spec: SweepSpec, out: str | Path, *, scheduler: str | None = None) -> str:
+    """Say what :func:`run_sweep` is about to do: cases, dimensions, chunks, where, into what.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The resolved sweep.
+    out : str or pathlib.Path
+        Its output folder.
+    scheduler : str, optional
+        Address of the Dask scheduler it runs on (default: local processes).
+
+    Returns
+    -------
+    str
+        E.g. ``"12 cases (3 x 4 over track.pad_temperature_c, speed_kmh) in 3 chunks,
+        on local processes -> out/"``.
+    """
+    where = f"Dask scheduler {scheduler}" if scheduler else "local processes"
+    return f"{SweepLayout(spec).describe()}, on {where} -> {out}/"
 
 
 def run_sweep(

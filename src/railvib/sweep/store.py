@@ -5,6 +5,7 @@ Layout of a sweep folder::
     OUT/manifest.json          fingerprint, layout and the resolved sweep
     OUT/chunks/chunk-000012.npz one file per finished chunk, written atomically
     OUT/sweep.zarr             the assembled dataset (written when all chunks exist)
+    OUT/sweep.nc, OUT/summary.csv, OUT/plots/   optional exports
 
 Each chunk is written to a temporary file and moved into place with
 ``os.replace``, so a chunk file exists completely or not at all, whatever
@@ -33,15 +34,60 @@ from railvib.io import atomic_path, railvib_version
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
 
-__all__ = ["ChunkStore", "SweepMismatchError", "fingerprint"]
+__all__ = [
+    "ChunkStore",
+    "SweepMismatchError",
+    "default_output_folder",
+    "default_plot_folder",
+    "fingerprint",
+]
 
 MANIFEST = "manifest.json"
 ZARR_NAME = "sweep.zarr"
+#: optional exports of a sweep folder
+NETCDF_NAME = "sweep.nc"
+CSV_NAME = "summary.csv"
+PLOTS_NAME = "plots"
 _CHUNK_RE = re.compile(r"^chunk-(\d{6,})\.npz$")
 
 
 class SweepMismatchError(RailvibError):
     """The output folder holds chunks of a different sweep."""
+
+
+def default_output_folder(sweep_file: str | Path) -> Path:
+    """The output folder of a sweep file run without ``--output``.
+
+    Parameters
+    ----------
+    sweep_file : str or pathlib.Path
+        The sweep file.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<sweep file stem>.sweep``, relative to the current folder (not to the
+        sweep file), e.g. ``temp_speed.sweep`` for ``cases/temp_speed.toml``.
+    """
+    return Path(f"{Path(sweep_file).stem}.sweep")
+
+
+def default_plot_folder(result: str | Path) -> Path:
+    """The folder that the plots of a sweep result go to when none is given.
+
+    Parameters
+    ----------
+    result : str or pathlib.Path
+        A sweep folder, its ``sweep.zarr`` store or a netCDF export.
+
+    Returns
+    -------
+    pathlib.Path
+        ``RESULT/plots`` for a sweep folder, else ``plots`` next to the store or file.
+    """
+    result = Path(result)
+    folder = result if result.is_dir() and result.suffix != ".zarr" else result.parent
+    return folder / PLOTS_NAME
 
 
 def fingerprint(spec: SweepSpec) -> str:
