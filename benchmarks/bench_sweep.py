@@ -25,12 +25,13 @@ import shutil
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 import railvib
 from railvib.case.load import merge_case_dicts
-from railvib.sweep import SweepLayout, run_sweep, sweep_from_dict
+from railvib.sweep import SweepLayout, SweepSpec, run_sweep, sweep_from_dict
 from railvib.sweep.spec import nested_override
 
 PAD = {
@@ -43,7 +44,7 @@ PAD = {
 }
 
 
-def sweep_dict(structural: bool = False) -> dict:
+def sweep_dict(structural: bool = False) -> dict[str, Any]:
     second = (
         {
             "field": "track.pad.k0_n_per_m",
@@ -70,7 +71,7 @@ def sweep_dict(structural: bool = False) -> dict:
     }
 
 
-def time_sweep(spec: dict, workers: int) -> float:
+def time_sweep(spec: SweepSpec, workers: int) -> float:
     out = Path(tempfile.mkdtemp(prefix="railvib-bench-"))
     try:
         t0 = time.perf_counter()
@@ -80,14 +81,14 @@ def time_sweep(spec: dict, workers: int) -> float:
         shutil.rmtree(out, ignore_errors=True)
 
 
-def time_one_by_one(spec: dict, sample: int) -> float:
+def time_one_by_one(spec: SweepSpec, sample: int) -> float:
     """Seconds per case of ``railvib.run`` (the case validated, built and run alone)."""
     lay = SweepLayout(spec)
     all_idx = np.stack(np.unravel_index(np.arange(lay.n_cases), lay.shape), axis=1)
     pick = np.linspace(0, lay.n_cases - 1, min(sample, lay.n_cases)).astype(int)
     cases = []
     for index in all_idx[pick]:
-        d = spec["base_case"]
+        d = spec.base_case_dict()
         for field, value in lay.overrides(index):
             d = merge_case_dicts(d, nested_override(field, value))
         cases.append(d)

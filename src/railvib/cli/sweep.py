@@ -6,7 +6,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import click
 
@@ -79,17 +78,17 @@ def run_command(
     no_progress: bool,
 ) -> None:
     """Run SWEEP_FILE; rerunning the same command resumes an interrupted sweep."""
-    from railvib.sweep import SweepLayout, load_sweep, run_sweep
+    from railvib.sweep import (
+        default_output_folder,
+        describe_run,
+        load_sweep,
+        run_sweep,
+        save_sweep_extras,
+    )
 
     spec = load_sweep(sweep_file)
-    out = outdir or Path(f"{sweep_file.stem}.sweep")
-    lay = SweepLayout(spec)
-    where = f"Dask scheduler {scheduler}" if scheduler else "local processes"
-    click.echo(
-        f"{lay.n_cases} cases ({' x '.join(map(str, lay.shape))} over "
-        f"{', '.join(lay.dims)}) in {lay.n_chunks} chunks, on {where} -> {out}/",
-        err=True,
-    )
+    out = outdir if outdir is not None else default_output_folder(sweep_file)
+    click.echo(describe_run(spec, out, scheduler=scheduler), err=True)
     try:
         ds = run_sweep(
             spec,
@@ -106,23 +105,10 @@ def run_command(
             err=True,
         )
         raise
-    assert ds is not None
-    _write_extras(ds, out, netcdf=netcdf, csv=csv, plots=make_plots)
+    assert ds is not None  # run_sweep assembles by default
+    for path in save_sweep_extras(ds, out, netcdf=netcdf, csv=csv, plots=make_plots):
+        click.echo(f"written {path}", err=True)
     click.echo(f"written {out}/sweep.zarr", err=True)
-
-
-def _write_extras(ds: Any, out: Path, *, netcdf: bool, csv: bool, plots: bool) -> None:
-    from railvib.sweep import save_sweep_csv, save_sweep_netcdf
-
-    if netcdf:
-        click.echo(f"written {save_sweep_netcdf(ds, out / 'sweep.nc')}", err=True)
-    if csv:
-        click.echo(f"written {save_sweep_csv(ds, out / 'summary.csv')}", err=True)
-    if plots:
-        from railvib.plot.sweep import save_sweep_plots
-
-        for p in save_sweep_plots(ds, out / "plots"):
-            click.echo(f"written {p}", err=True)
 
 
 @click.command("plot")
@@ -162,21 +148,13 @@ def plot(
     outdir: Path | None,
 ) -> None:
     """Plot the summary of a sweep RESULT (folder, sweep.zarr or .nc) over its axes."""
-    from railvib.plot.sweep import DEFAULT_RESPONSES, plot_sweep, save_axes
-    from railvib.sweep import load_sweep_dataset
+    from railvib.plot.sweep import save_sweep_plots
+    from railvib.sweep import default_plot_folder, load_sweep_dataset
 
     ds = load_sweep_dataset(result)
-    if outdir is None:
-        outdir = result if result.is_dir() and result.suffix != ".zarr" else result.parent
-        outdir = outdir / "plots"
-    outdir.mkdir(parents=True, exist_ok=True)
-    labels = [str(r) for r in ds["response"].values]
-    chosen = list(responses) or [r for r in DEFAULT_RESPONSES if r in labels]
-    for variable in variables:
-        for r in chosen:
-            path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
-            save_axes(plot_sweep(ds, variable, r, x=x, y=y), path)
-            click.echo(f"written {path}")
+    folder = outdir if outdir is not None else default_plot_folder(result)
+    for path in save_sweep_plots(ds, folder, variables, responses, x=x, y=y):
+        click.echo(f"written {path}")
 
 
 sweep.add_command(plot)

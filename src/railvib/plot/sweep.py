@@ -155,24 +155,39 @@ def save_sweep_plots(
     outdir: str | Path,
     variables: Sequence[str] = ("peak", "dominant_frequency"),
     responses: Sequence[str] | None = None,
+    *,
+    x: str | None = None,
+    y: str | None = None,
 ) -> list[Path]:
     """Write one PNG per (variable, response): heat map if two axes vary, else lines.
+
+    The files are ``sweep_<variable>_<response>.png`` (``.`` -> ``_``, ``@`` ->
+    ``_at_``), drawn by :func:`plot_sweep`.
 
     Parameters
     ----------
     ds : xarray.Dataset
         A sweep dataset.
     outdir : str or pathlib.Path
-        Folder for the PNG files.
+        Folder for the PNG files (created if missing).
     variables : sequence of str
-        Summary variables to draw.
+        Summary variables to draw: ``peak`` (PSD units), ``dominant_frequency``
+        (Hz), ``rms`` or ``rms_<lo>_<hi>_hz`` (m/s^2).
     responses : sequence of str, optional
-        Responses (default: those of :data:`DEFAULT_RESPONSES` present).
+        Responses (default, also when empty: those of :data:`DEFAULT_RESPONSES` present).
+    x, y : str, optional
+        Sweep dimensions for the horizontal axis and for a heat map's vertical
+        axis (default: as :func:`plot_sweep` chooses).
 
     Returns
     -------
     list of pathlib.Path
         The files written.
+
+    Raises
+    ------
+    CaseError
+        An unknown variable, response or sweep dimension.
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -182,6 +197,6 @@ def save_sweep_plots(
     for variable in variables:
         for r in responses:
             path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
-            save_axes(plot_sweep(ds, variable, r), path)
+            save_axes(plot_sweep(ds, variable, r, x=x, y=y), path)
             written.append(path)
     return written

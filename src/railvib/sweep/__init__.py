@@ -7,6 +7,8 @@ Examples
 ...     "case": {"preset": "wang2017_metro"},
 ...     "axes": [{"field": "speed_kmh", "values": [40.0, 80.0]}],
 ... })
+>>> spec.axes[0].values
+(40.0, 80.0)
 >>> SweepLayout(spec).shape
 (2,)
 """
@@ -15,26 +17,39 @@ from railvib.sweep.batch import compute_chunk, frf_many_speeds
 from railvib.sweep.dataset import (
     load_sweep_dataset,
     save_sweep_csv,
+    save_sweep_extras,
     save_sweep_netcdf,
     sweep_dataset,
 )
 from railvib.sweep.layout import SweepLayout
-from railvib.sweep.runner import SweepInterrupted, run_sweep
-from railvib.sweep.spec import load_sweep, sweep_from_dict
-from railvib.sweep.store import ChunkStore, SweepMismatchError, fingerprint
+from railvib.sweep.runner import SweepInterrupted, describe_run, run_sweep
+from railvib.sweep.spec import SweepAxis, SweepSpec, load_sweep, sweep_from_dict
+from railvib.sweep.store import (
+    ChunkStore,
+    SweepMismatchError,
+    default_output_folder,
+    default_plot_folder,
+    fingerprint,
+)
 
 __all__ = [
     "ChunkStore",
     "SweepInterrupted",
     "SweepLayout",
+    "SweepAxis",
     "SweepMismatchError",
+    "SweepSpec",
     "compute_chunk",
+    "default_output_folder",
+    "default_plot_folder",
+    "describe_run",
     "fingerprint",
     "frf_many_speeds",
     "load_sweep",
     "load_sweep_dataset",
     "run_sweep",
     "save_sweep_csv",
+    "save_sweep_extras",
     "save_sweep_netcdf",
     "sweep_dataset",
     "sweep_from_dict",

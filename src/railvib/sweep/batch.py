@@ -25,7 +25,7 @@ from railvib.response import FRF, response_labels
 from railvib.results.stats import summary, summary_names
 from railvib.results.variables import compute_variables
 from railvib.sweep.layout import SweepLayout, is_cheap_field
-from railvib.sweep.spec import nested_override
+from railvib.sweep.spec import SweepSpec, nested_override
 from railvib.units import kmh_to_ms
 from railvib.vehicle.assembly import WheelCondensation
 
@@ -116,12 +116,12 @@ def _track_key(case: dict[str, Any]) -> str:
     )
 
 
-def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]]:
+def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     """Solve every case of one chunk of a sweep, batching cases that share structure.
 
     Parameters
     ----------
-    spec : dict
+    spec : SweepSpec
         A resolved sweep (:func:`railvib.sweep.spec.sweep_from_dict`).
     chunk_id : int
         Chunk number (C order over the chunk grid).
@@ -134,19 +134,19 @@ def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]
         ``(n_case, n_resp)``; cases in C order over the chunk block.
     """
     layout = SweepLayout(spec)
-    base = spec["base_case"]
+    base = spec.base_case_dict()
     f = build_grid(case_from_dict(base)).f
     cases, groups = _chunk_cases(spec, layout, chunk_id)
     frf, s_r = _solve_groups(f, cases, groups)
-    out: dict[str, NDArray[Any]] = dict(compute_variables(frf, s_r, spec["variables"]))
-    target = compute_variables(frf, s_r, [spec["summary_variable"]])[spec["summary_variable"]]
+    out: dict[str, NDArray[Any]] = dict(compute_variables(frf, s_r, spec.variables))
+    target = compute_variables(frf, s_r, [spec.summary_variable])[spec.summary_variable]
     da = xr.DataArray(
         target,
         dims=("case", "frequency", "response"),
         coords={"frequency": f, "response": list(frf.labels)},
         attrs={"units": ""},
     )
-    bands = [(float(lo), float(hi)) for lo, hi in base["output"]["rms_bands"]]
+    bands = list(spec.rms_bands)
     stats = summary(xr.Dataset({"psd": da}), bands=bands, variable="psd")
     for name in summary_names(bands):
         out[f"summary/{name}"] = stats[name].transpose("case", "response").values
@@ -154,14 +154,15 @@ def compute_chunk(spec: dict[str, Any], chunk_id: int) -> dict[str, NDArray[Any]
 
 
 def _chunk_cases(
-    spec: dict[str, Any], layout: SweepLayout, chunk_id: int
+    spec: SweepSpec, layout: SweepLayout, chunk_id: int
 ) -> tuple[list[dict[str, Any]], list[list[int]]]:
     """The case dicts of a chunk, and the groups of cases that share the coupled system."""
-    cheap = [is_cheap_field(ax["field"]) for ax in spec["axes"]]
+    cheap = [is_cheap_field(field) for field in spec.fields]
+    base = spec.base_case_dict()
     cases: list[dict[str, Any]] = []
     groups: dict[str, list[int]] = {}
     for i, index in enumerate(layout.chunk_indices(chunk_id)):
-        full = spec["base_case"]
+        full = base
         struct_override: dict[str, Any] = {}
         for (field, value), is_cheap in zip(layout.overrides(index), cheap, strict=True):
             full = merge_case_dicts(full, nested_override(field, value))

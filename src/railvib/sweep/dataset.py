@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -17,11 +16,14 @@ from railvib.results.stats import summary_attrs, summary_names
 from railvib.results.variables import VARIABLES
 from railvib.sweep.batch import case_labels
 from railvib.sweep.layout import SweepLayout
+from railvib.sweep.spec import SweepSpec
+from railvib.sweep.store import CSV_NAME, NETCDF_NAME, PLOTS_NAME
 
 __all__ = [
     "field_unit",
     "load_sweep_dataset",
     "save_sweep_csv",
+    "save_sweep_extras",
     "save_sweep_netcdf",
     "summary_variables",
     "sweep_dataset",
@@ -63,14 +65,12 @@ def summary_variables(ds: xr.Dataset) -> list[str]:
     return [str(n) for n, da in ds.data_vars.items() if "frequency" not in da.dims]
 
 
-def sweep_dataset(
-    spec: dict[str, Any], arrays: dict[str, NDArray[Any]], fingerprint: str
-) -> xr.Dataset:
+def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint: str) -> xr.Dataset:
     """Label the assembled arrays of a sweep.
 
     Parameters
     ----------
-    spec : dict
+    spec : SweepSpec
         The resolved sweep.
     arrays : dict of numpy.ndarray
         Per-frequency variables ``(*sweep_shape, n_freq[, n_resp])`` and
@@ -84,7 +84,7 @@ def sweep_dataset(
         Dimensions ``frequency``, ``response`` / ``wheel``, then the sweep dimensions.
     """
     layout = SweepLayout(spec)
-    base = case_from_dict(spec["base_case"])
+    base = case_from_dict(spec.base_case_dict())
     system = build_system(base)
     f = build_grid(base).f
     labels = case_labels(system)
@@ -95,34 +95,29 @@ def sweep_dataset(
         "response": ("response", labels, {"long_name": "response"}),
         "wheel": ("wheel", np.arange(1, n_wheel + 1), {"long_name": "wheel"}),
     }
-    for ax in spec["axes"]:
-        values = ax["coords"]
-        attrs = {
-            "long_name": ax["field"],
-            "units": field_unit(ax["field"]),
-            "case_field": ax["field"],
-        }
-        coords[ax["dim"]] = (ax["group"], _coord_array(values), attrs)
+    for ax in spec.axes:
+        attrs = {"long_name": ax.field, "units": field_unit(ax.field), "case_field": ax.field}
+        coords[ax.dim] = (ax.group, _coord_array(list(ax.coords)), attrs)
     data: dict[str, Any] = {}
     sweep_dims = tuple(dims)
-    for name in spec["variables"]:
+    for name in spec.variables:
         var = VARIABLES[name]
         da = xr.DataArray(arrays[name], dims=(*sweep_dims, *var.dims))
         data[name] = da.transpose(*var.dims, *sweep_dims).assign_attrs(var.attrs)
-    summarised = spec["summary_variable"]
-    for name in summary_names(spec["base_case"]["output"]["rms_bands"]):
+    summarised = spec.summary_variable
+    for name in summary_names(spec.rms_bands):
         da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, "response"))
         attrs = summary_attrs(name, summarised, VARIABLES[summarised].units)
         data[name] = da.transpose("response", *sweep_dims).assign_attrs(attrs)
     attrs = {
-        "title": spec["title"],
+        "title": spec.title,
         "psd_convention": PSD_CONVENTION,
         "railvib_version": railvib_version(),
         "sweep_fingerprint": fingerprint,
-        "sweep_spec_json": json.dumps(spec, sort_keys=True, default=str),
+        "sweep_spec_json": spec.to_json(),
         "base_case_toml": base.to_toml(),
         "sweep_dims": ",".join(dims),
-        "summary_variable": spec["summary_variable"],
+        "summary_variable": spec.summary_variable,
         "time_dependence": "exp(+i omega t)",
     }
     return xr.Dataset(data, coords=coords, attrs=attrs)
@@ -177,3 +172,45 @@ def save_sweep_csv(ds: xr.Dataset, path: str | Path) -> Path:
     with atomic_path(path) as tmp:
         table.to_csv(tmp, float_format="%.9g")
     return path
+
+
+def save_sweep_extras(
+    ds: xr.Dataset,
+    out: str | Path,
+    *,
+    netcdf: bool = False,
+    csv: bool = False,
+    plots: bool = False,
+) -> list[Path]:
+    """Write the optional exports of a sweep into its output folder.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The sweep dataset (:func:`railvib.sweep.run_sweep`).
+    out : str or pathlib.Path
+        The sweep's output folder.
+    netcdf : bool
+        Write the whole dataset to ``OUT/sweep.nc`` (:func:`save_sweep_netcdf`).
+    csv : bool
+        Write the summary table to ``OUT/summary.csv`` (:func:`save_sweep_csv`).
+    plots : bool
+        Draw the default summary plots into ``OUT/plots``
+        (:func:`railvib.plot.sweep.save_sweep_plots`).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, in this order (netCDF, CSV, plots).
+    """
+    out = Path(out)
+    written: list[Path] = []
+    if netcdf:
+        written.append(save_sweep_netcdf(ds, out / NETCDF_NAME))
+    if csv:
+        written.append(save_sweep_csv(ds, out / CSV_NAME))
+    if plots:
+        from railvib.plot.sweep import save_sweep_plots
+
+        written.extend(save_sweep_plots(ds, out / PLOTS_NAME))
+    return written

@@ -16,6 +16,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from railvib.sweep.spec import SweepSpec
+
 __all__ = ["CHEAP_FIELDS", "SweepLayout", "is_cheap_field"]
 
 #: fields that change only the excitation, not the coupled system
@@ -33,25 +35,25 @@ class SweepLayout:
 
     Parameters
     ----------
-    spec : dict
+    spec : SweepSpec
         A resolved sweep, see :func:`railvib.sweep.spec.sweep_from_dict`.
     """
 
-    spec: dict[str, Any]
+    spec: SweepSpec
 
     @cached_property
     def dims(self) -> tuple[str, ...]:
         """Sweep dimension names, in file order."""
         out: list[str] = []
-        for ax in self.spec["axes"]:
-            if ax["group"] not in out:
-                out.append(ax["group"])
+        for ax in self.spec.axes:
+            if ax.group not in out:
+                out.append(ax.group)
         return tuple(out)
 
     @cached_property
     def shape(self) -> tuple[int, ...]:
         """Number of cases along each sweep dimension."""
-        sizes = {ax["group"]: len(ax["values"]) for ax in self.spec["axes"]}
+        sizes = {ax.group: ax.size for ax in self.spec.axes}
         return tuple(sizes[d] for d in self.dims)
 
     @property
@@ -63,11 +65,11 @@ class SweepLayout:
     def block(self) -> tuple[int, ...]:
         """Chunk (block) shape along the sweep dimensions, at most ``chunk_size`` cases."""
         cheap = {
-            d: all(is_cheap_field(a["field"]) for a in self.spec["axes"] if a["group"] == d)
+            d: all(is_cheap_field(a.field) for a in self.spec.axes if a.group == d)
             for d in self.dims
         }
         order = sorted(range(len(self.dims)), key=lambda i: (not cheap[self.dims[i]], -i))
-        left = int(self.spec["chunk_size"])
+        left = self.spec.chunk_size
         block = [1] * len(self.dims)
         for i in order:
             block[i] = max(1, min(self.shape[i], left))
@@ -103,6 +105,22 @@ class SweepLayout:
         return np.stack([m.ravel() for m in mesh], axis=1)
 
     def overrides(self, index: NDArray[np.int64]) -> list[tuple[str, Any]]:
-        """``(field, value)`` of every axis for the case at sweep `index`."""
+        """``(field, value)`` of every axis for the case at sweep `index`.
+
+        The values are plain, mutable copies (tables as dicts), ready for
+        :func:`railvib.case.merge_case_dicts`.
+        """
         pos = dict(zip(self.dims, (int(i) for i in index), strict=True))
-        return [(ax["field"], ax["values"][pos[ax["group"]]]) for ax in self.spec["axes"]]
+        return [(ax.field, ax.value(pos[ax.group])) for ax in self.spec.axes]
+
+    def describe(self) -> str:
+        """Say how many cases over which dimensions, in how many chunks.
+
+        Returns
+        -------
+        str
+            E.g. ``"12 cases (3 x 4 over track.pad_temperature_c, speed_kmh) in 3 chunks"``.
+        """
+        shape = " x ".join(map(str, self.shape))
+        dims = ", ".join(self.dims)
+        return f"{self.n_cases} cases ({shape} over {dims}) in {self.n_chunks} chunks"

@@ -23,9 +23,11 @@ from numpy.typing import NDArray
 
 from railvib.errors import RailvibError
 from railvib.sweep.batch import compute_chunk
+from railvib.sweep.layout import SweepLayout
+from railvib.sweep.spec import SweepSpec
 from railvib.sweep.store import ChunkStore
 
-__all__ = ["SweepInterrupted", "run_sweep"]
+__all__ = ["SweepInterrupted", "describe_run", "run_sweep"]
 
 ChunkResult = tuple[int, dict[str, NDArray[Any]]]
 
@@ -34,12 +36,34 @@ class SweepInterrupted(RailvibError):
     """A worker died or the run was stopped; finished chunks are kept."""
 
 
-def _compute(spec: dict[str, Any], chunk_id: int) -> ChunkResult:
+def _compute(spec: SweepSpec, chunk_id: int) -> ChunkResult:
     return chunk_id, compute_chunk(spec, chunk_id)
 
 
+def describe_run(spec: SweepSpec, out: str | Path, *, scheduler: str | None = None) -> str:
+    """Say what :func:`run_sweep` is about to do: cases, dimensions, chunks, where, into what.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The resolved sweep.
+    out : str or pathlib.Path
+        Its output folder.
+    scheduler : str, optional
+        Address of the Dask scheduler it runs on (default: local processes).
+
+    Returns
+    -------
+    str
+        E.g. ``"12 cases (3 x 4 over track.pad_temperature_c, speed_kmh) in 3 chunks,
+        on local processes -> out/"``.
+    """
+    where = f"Dask scheduler {scheduler}" if scheduler else "local processes"
+    return f"{SweepLayout(spec).describe()}, on {where} -> {out}/"
+
+
 def run_sweep(
-    spec: dict[str, Any],
+    spec: SweepSpec,
     out: str | Path,
     *,
     workers: int | None = None,
@@ -52,7 +76,7 @@ def run_sweep(
 
     Parameters
     ----------
-    spec : dict
+    spec : SweepSpec
         A resolved sweep (:func:`railvib.sweep.load_sweep`).
     out : str or pathlib.Path
         Output folder; finished chunks found there are kept (resume).
@@ -123,7 +147,7 @@ def _ignore_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _local(spec: dict[str, Any], todo: list[int], workers: int) -> Iterator[ChunkResult]:
+def _local(spec: SweepSpec, todo: list[int], workers: int) -> Iterator[ChunkResult]:
     """Chunks on local processes, at most 2 queued per worker; yields as they finish."""
     pool = ProcessPoolExecutor(
         max_workers=min(workers, len(todo)), mp_context=_mp_context(), initializer=_ignore_sigint
@@ -149,7 +173,7 @@ def _local(spec: dict[str, Any], todo: list[int], workers: int) -> Iterator[Chun
         pool.shutdown(wait=True, cancel_futures=True)
 
 
-def _dask(spec: dict[str, Any], todo: list[int], scheduler: Any) -> Iterator[ChunkResult]:
+def _dask(spec: SweepSpec, todo: list[int], scheduler: Any) -> Iterator[ChunkResult]:
     """Chunks on a Dask distributed cluster; yields as they finish."""
     from distributed import Client, as_completed
 

@@ -22,14 +22,23 @@ A sweep file is TOML::
 
 Every error is a :class:`~railvib.errors.CaseError` naming the field
 (``axes[1].step``, ``speed_kmh``, ...).
+
+:func:`load_sweep` and :func:`sweep_from_dict` return a :class:`SweepSpec`: the
+resolved sweep as a frozen, picklable object (base case after presets and base
+files, every axis with its values). :meth:`SweepSpec.as_dict` gives it back as
+the plain JSON-able dict that is hashed into the sweep's fingerprint and stored
+in the manifest.
 """
 
 from __future__ import annotations
 
 import copy
+import dataclasses
 import json
 import math
 import tomllib
+from collections.abc import Iterator, Mapping, Sequence
+from numbers import Integral
 from pathlib import Path
 from typing import Any, Literal
 
@@ -42,8 +51,11 @@ from railvib.results.variables import PER_FREQUENCY, VARIABLES
 
 __all__ = [
     "PER_FREQUENCY_VARIABLES",
+    "SUMMARY_VARIABLES",
     "AxisSpec",
+    "SweepAxis",
     "SweepFile",
+    "SweepSpec",
     "load_sweep",
     "nested_override",
     "sweep_from_dict",
@@ -51,6 +63,9 @@ __all__ = [
 
 #: per-frequency variables a sweep may keep, with their extra dimension
 PER_FREQUENCY_VARIABLES = {name: VARIABLES[name].extra_dim for name in PER_FREQUENCY}
+
+#: PSD variables whose summary (peak, dominant frequency, band RMS) a sweep may store
+SUMMARY_VARIABLES = ("psd_acceleration", "psd_displacement")
 
 #: case fields that cannot vary: every case shares one grid and one set of summary bands
 _FIXED_PREFIXES = ("frequency", "output", "title")
@@ -142,7 +157,307 @@ class SweepFile(_Model):
         return self
 
 
-def load_sweep(path: str | Path) -> dict[str, Any]:
+# -- the resolved sweep ------------------------------------------------------------------------
+
+
+class _FrozenList(tuple[Any, ...]):
+    """A list of a sweep spec, frozen: a tuple that :func:`_thaw` turns back into a list.
+
+    Kept apart from plain tuples so that :meth:`SweepSpec.as_dict` gives back
+    exactly the lists and tuples it was given.
+    """
+
+    __slots__ = ()
+
+    def __copy__(self) -> _FrozenList:
+        return self
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> _FrozenList:
+        return self
+
+
+class _FrozenTable(Mapping[str, Any]):
+    """A table (dict) of a sweep spec, frozen: read-only, hashable and picklable.
+
+    Its values are frozen too (tables, lists as tuples). Unlike
+    ``types.MappingProxyType`` it pickles, so a spec holding it can be sent to
+    worker processes and Dask workers.
+    """
+
+    __slots__ = ("_items",)
+
+    _items: dict[str, Any]
+
+    def __init__(self, items: Mapping[str, Any]) -> None:
+        object.__setattr__(self, "_items", {k: _freeze(v) for k, v in items.items()})
+
+    def __getitem__(self, key: str) -> Any:
+        return self._items[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"{type(self).__name__} is read-only")
+
+    def __hash__(self) -> int:
+        return hash(frozenset(self._items.items()))  # equal tables hash equal, any order
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self._items!r})"
+
+    def __reduce__(self) -> tuple[type[_FrozenTable], tuple[dict[str, Any]]]:
+        return (type(self), (self._items,))
+
+    def __copy__(self) -> _FrozenTable:
+        return self
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> _FrozenTable:
+        return self
+
+
+def _freeze(value: Any) -> Any:
+    """A read-only copy of a JSON-like value: dicts -> frozen tables, lists -> tuples."""
+    if isinstance(value, _FrozenTable | _FrozenList):
+        return value
+    if isinstance(value, dict):
+        return _FrozenTable(value)
+    if isinstance(value, list):
+        return _FrozenList(_freeze(v) for v in value)
+    if isinstance(value, tuple):
+        return tuple(_freeze(v) for v in value)
+    return value
+
+
+def _thaw(value: Any) -> Any:
+    """A plain, mutable deep copy of a frozen value (the inverse of :func:`_freeze`)."""
+    if isinstance(value, _FrozenTable):
+        return {k: _thaw(v) for k, v in value.items()}
+    if isinstance(value, _FrozenList):
+        return [_thaw(v) for v in value]
+    if isinstance(value, tuple):
+        return tuple(_thaw(v) for v in value)
+    if isinstance(value, dict | list):
+        return copy.deepcopy(value)
+    return value
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepAxis:
+    """One resolved axis of a sweep: a case field and the values it takes.
+
+    Parameters
+    ----------
+    field : str
+        Dotted case field, e.g. ``"speed_kmh"`` or ``"track.pad"``; the values
+        are in the case file's units (km/h, degC, N/m, ...).
+    dim : str
+        Name of the axis's coordinate (the ``name`` in the sweep file, default
+        the field).
+    group : str
+        The sweep dimension the axis runs along: its own `dim`, the ``zip``
+        label it shares with other axes, or ``"case"`` in ``mode = "zip"``.
+    values : tuple
+        The values, in order: numbers, strings, booleans, or whole tables
+        (frozen: read-only mappings, lists as tuples).
+    coords : tuple
+        Coordinate labels, one per value: the values themselves, or the
+        ``labels`` given for tables.
+    """
+
+    field: str
+    dim: str
+    group: str
+    values: tuple[Any, ...]
+    coords: tuple[Any, ...]
+
+    def __post_init__(self) -> None:
+        for name in ("field", "dim", "group"):
+            text = getattr(self, name)
+            if not isinstance(text, str) or not text:
+                raise CaseError(f"axes.{name}", text, "a non-empty string")
+        values = tuple(_freeze(v) for v in self.values)
+        coords = tuple(_freeze(c) for c in self.coords)
+        if not values:
+            raise CaseError(f"axes.{self.field}.values", list(values), "at least one value")
+        if len(coords) != len(values):
+            raise CaseError(
+                f"axes.{self.field}.coords", len(coords), f"{len(values)}, one per value"
+            )
+        object.__setattr__(self, "values", values)
+        object.__setattr__(self, "coords", coords)
+
+    @property
+    def size(self) -> int:
+        """Number of values."""
+        return len(self.values)
+
+    def value(self, i: int) -> Any:
+        """Return value `i` as a plain, mutable copy (tables as dicts, lists as lists)."""
+        return _thaw(self.values[i])
+
+    def as_dict(self) -> dict[str, Any]:
+        """Return ``{field, dim, group, values, coords}`` with plain (mutable) values."""
+        return {
+            "field": self.field,
+            "dim": self.dim,
+            "group": self.group,
+            "values": [_thaw(v) for v in self.values],
+            "coords": [_thaw(c) for c in self.coords],
+        }
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepSpec:
+    """A resolved sweep: the base case and the axes over it (frozen, picklable).
+
+    Made by :func:`load_sweep` or :func:`sweep_from_dict`, which validate it;
+    it fully determines the results, so :meth:`as_dict` is what the sweep's
+    fingerprint (:func:`railvib.sweep.fingerprint`) hashes.
+
+    Parameters
+    ----------
+    title : str
+        Title of the sweep (the dataset's ``title`` attribute).
+    mode : {"product", "zip"}
+        ``"product"``: full factorial over the axis groups; ``"zip"``: all axes
+        vary together along one dimension ``case``.
+    chunk_size : int
+        At most this many cases per stored chunk (>= 1).
+    variables : tuple of str
+        Per-frequency variables kept (see :data:`PER_FREQUENCY_VARIABLES`);
+        empty: summaries only.
+    summary_variable : {"psd_acceleration", "psd_displacement"}
+        The PSD summarised by peak, dominant frequency and band RMS.
+    base_case : mapping
+        The fully resolved, validated base case as a JSON-able table (as
+        ``Case.model_dump(mode="json", exclude_none=True)`` gives it), frozen:
+        read-only, nested tables read-only, lists as tuples. Use
+        :meth:`base_case_dict` for a mutable copy.
+    axes : tuple of SweepAxis
+        The axes, in file order.
+    """
+
+    title: str
+    mode: Literal["product", "zip"]
+    chunk_size: int
+    variables: tuple[str, ...]
+    summary_variable: Literal["psd_acceleration", "psd_displacement"]
+    base_case: Mapping[str, Any] = dataclasses.field(repr=False)
+    axes: tuple[SweepAxis, ...]
+
+    def __post_init__(self) -> None:
+        if self.mode not in ("product", "zip"):
+            raise CaseError("mode", self.mode, "'product' or 'zip'")
+        size = self.chunk_size
+        if isinstance(size, bool) or not isinstance(size, Integral) or size < 1:
+            raise CaseError("chunk_size", size, "an integer >= 1 (cases)")
+        variables = tuple(self.variables)
+        for i, name in enumerate(variables):
+            if name not in PER_FREQUENCY_VARIABLES:
+                raise CaseError(
+                    f"variables[{i}]", name, f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                )
+        if self.summary_variable not in SUMMARY_VARIABLES:
+            raise CaseError(
+                "summary_variable", self.summary_variable, f"one of {', '.join(SUMMARY_VARIABLES)}"
+            )
+        if not isinstance(self.base_case, Mapping):
+            raise CaseError("base_case", type(self.base_case).__name__, "a resolved case table")
+        axes = tuple(self.axes)
+        if not axes or not all(isinstance(ax, SweepAxis) for ax in axes):
+            raise CaseError("axes", list(axes), "one or more SweepAxis")
+        dims = [ax.dim for ax in axes]
+        if len(set(dims)) != len(dims):
+            raise CaseError("axes.dim", dims, "distinct dimension names")
+        _check_groups(axes)
+        object.__setattr__(self, "chunk_size", int(size))
+        object.__setattr__(self, "variables", variables)
+        object.__setattr__(self, "base_case", _freeze(dict(self.base_case)))
+        object.__setattr__(self, "axes", axes)
+
+    @property
+    def fields(self) -> tuple[str, ...]:
+        """The dotted case field of every axis, in file order."""
+        return tuple(ax.field for ax in self.axes)
+
+    @property
+    def rms_bands(self) -> tuple[tuple[float, float], ...]:
+        """The base case's ``output.rms_bands``: ``(f_lo, f_hi)`` in Hz, shared by every case."""
+        bands = self.base_case["output"]["rms_bands"]
+        return tuple((float(lo), float(hi)) for lo, hi in bands)
+
+    def base_case_dict(self) -> dict[str, Any]:
+        """Return the base case as a plain, mutable deep copy (a case dict)."""
+        out: dict[str, Any] = _thaw(self.base_case)
+        return out
+
+    def as_dict(self) -> dict[str, Any]:
+        """Return the sweep as a plain JSON-able dict (what older railvib versions passed around).
+
+        Returns
+        -------
+        dict
+            ``title``, ``mode``, ``chunk_size``, ``variables``,
+            ``summary_variable``, ``base_case`` and ``axes`` (a list of
+            :meth:`SweepAxis.as_dict`), in this order; a fresh copy.
+        """
+        return {
+            "title": self.title,
+            "mode": self.mode,
+            "chunk_size": self.chunk_size,
+            "variables": list(self.variables),
+            "summary_variable": self.summary_variable,
+            "base_case": self.base_case_dict(),
+            "axes": [ax.as_dict() for ax in self.axes],
+        }
+
+    def to_json(self) -> str:
+        """Return :meth:`as_dict` as canonical JSON (sorted keys; the ``sweep_spec_json`` attr)."""
+        return json.dumps(self.as_dict(), sort_keys=True, default=str)
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> SweepSpec:
+        """Rebuild a spec from :meth:`as_dict` output (e.g. a manifest's ``spec``).
+
+        The base case is taken as resolved (not validated again).
+
+        Parameters
+        ----------
+        data : mapping
+            A dict with the keys :meth:`as_dict` writes.
+
+        Returns
+        -------
+        SweepSpec
+        """
+        try:
+            return cls(
+                title=data["title"],
+                mode=data["mode"],
+                chunk_size=data["chunk_size"],
+                variables=tuple(data["variables"]),
+                summary_variable=data["summary_variable"],
+                base_case=data["base_case"],
+                axes=tuple(
+                    SweepAxis(
+                        field=ax["field"],
+                        dim=ax["dim"],
+                        group=ax["group"],
+                        values=tuple(ax["values"]),
+                        coords=tuple(ax["coords"]),
+                    )
+                    for ax in data["axes"]
+                ),
+            )
+        except KeyError as exc:
+            raise CaseError(f"sweep.{exc.args[0]}", "<missing>", "required") from None
+
+
+def load_sweep(path: str | Path) -> SweepSpec:
     """Read, validate and resolve a TOML sweep file.
 
     Parameters
@@ -152,7 +467,7 @@ def load_sweep(path: str | Path) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    SweepSpec
         The resolved sweep (see :func:`sweep_from_dict`).
 
     Raises
@@ -170,7 +485,7 @@ def load_sweep(path: str | Path) -> dict[str, Any]:
     return sweep_from_dict(data, base_dir=path.parent)
 
 
-def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> dict[str, Any]:
+def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> SweepSpec:
     """Validate a sweep given as a plain dict and resolve it.
 
     Parameters
@@ -182,12 +497,15 @@ def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
 
     Returns
     -------
-    dict
-        JSON-able: ``title``, ``mode``, ``chunk_size``, ``variables``,
-        ``summary_variable``, ``base_case`` (the fully resolved, validated base
-        case as a dict) and ``axes`` (list of ``{field, dim, group, values,
-        coords}``). It fully determines the results, so its hash is the sweep's
-        fingerprint.
+    SweepSpec
+        The base case fully resolved and validated, the axes with their values
+        (each value validated against the base case). It fully determines the
+        results; the hash of :meth:`SweepSpec.as_dict` is the sweep's fingerprint.
+
+    Raises
+    ------
+    CaseError
+        With the dotted field name, the value and what is allowed.
     """
     base_dir = Path(base_dir) if base_dir is not None else Path.cwd()
     try:
@@ -196,15 +514,15 @@ def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
         raise _sweep_error(exc) from None
     base_case = _resolve_base(spec, base_dir)
     axes = _resolve_axes(spec, base_case, base_dir)
-    return {
-        "title": spec.title,
-        "mode": spec.mode,
-        "chunk_size": spec.chunk_size,
-        "variables": list(spec.variables),
-        "summary_variable": spec.summary_variable,
-        "base_case": base_case,
-        "axes": axes,
-    }
+    return SweepSpec(
+        title=spec.title,
+        mode=spec.mode,
+        chunk_size=spec.chunk_size,
+        variables=tuple(spec.variables),
+        summary_variable=spec.summary_variable,
+        base_case=base_case,
+        axes=axes,
+    )
 
 
 def nested_override(field: str, value: Any) -> dict[str, Any]:
@@ -243,8 +561,8 @@ def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
     return _case_dump(case_from_dict(data, base_dir=base_dir))
 
 
-def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> list[dict[str, Any]]:
-    axes: list[dict[str, Any]] = []
+def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tuple[SweepAxis, ...]:
+    axes: list[SweepAxis] = []
     dims: set[str] = set()
     for i, ax in enumerate(spec.axes):
         where = f"axes[{i}]"
@@ -268,26 +586,33 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> list
         group = "case" if spec.mode == "zip" else (ax.zip or ax.dim)
         coords = list(ax.labels) if ax.labels is not None else values
         axes.append(
-            {"field": ax.field, "dim": ax.dim, "group": group, "values": values, "coords": coords}
+            SweepAxis(
+                field=ax.field, dim=ax.dim, group=group, values=tuple(values), coords=tuple(coords)
+            )
         )
-    _check_temperature_axis(base, [entry["field"] for entry in axes], base_dir)
+    _check_temperature_axis(base, [entry.field for entry in axes], base_dir)
+    _check_groups(axes)
+    return tuple(axes)
+
+
+def _check_groups(axes: Sequence[SweepAxis]) -> None:
+    """Zipped axes have equal lengths; no axis is named like another group's dimension."""
     sizes: dict[str, int] = {}
     for entry in axes:
-        n = sizes.setdefault(entry["group"], len(entry["values"]))
-        if n != len(entry["values"]):
+        n = sizes.setdefault(entry.group, entry.size)
+        if n != entry.size:
             raise CaseError(
-                f"axes.{entry['field']}",
-                len(entry["values"]),
-                f"zipped axes of group {entry['group']!r} need equal lengths ({n})",
+                f"axes.{entry.field}",
+                entry.size,
+                f"zipped axes of group {entry.group!r} need equal lengths ({n})",
             )
     for entry in axes:
-        if entry["dim"] in sizes and entry["dim"] != entry["group"]:
+        if entry.dim in sizes and entry.dim != entry.group:
             raise CaseError(
-                f"axes.{entry['field']}",
-                entry["dim"],
+                f"axes.{entry.field}",
+                entry.dim,
                 "an axis name distinct from other groups' zip labels",
             )
-    return axes
 
 
 def _check_temperature_axis(base: dict[str, Any], fields: list[str], base_dir: Path) -> None:

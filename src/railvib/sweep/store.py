@@ -5,6 +5,7 @@ Layout of a sweep folder::
     OUT/manifest.json          fingerprint, layout and the resolved sweep
     OUT/chunks/chunk-000012.npz one file per finished chunk, written atomically
     OUT/sweep.zarr             the assembled dataset (written when all chunks exist)
+    OUT/sweep.nc, OUT/summary.csv, OUT/plots/   optional exports
 
 Each chunk is written to a temporary file and moved into place with
 ``os.replace``, so a chunk file exists completely or not at all, whatever
@@ -31,11 +32,22 @@ from numpy.typing import NDArray
 from railvib.errors import RailvibError
 from railvib.io import atomic_path, railvib_version
 from railvib.sweep.layout import SweepLayout
+from railvib.sweep.spec import SweepSpec
 
-__all__ = ["ChunkStore", "SweepMismatchError", "fingerprint"]
+__all__ = [
+    "ChunkStore",
+    "SweepMismatchError",
+    "default_output_folder",
+    "default_plot_folder",
+    "fingerprint",
+]
 
 MANIFEST = "manifest.json"
 ZARR_NAME = "sweep.zarr"
+#: optional exports of a sweep folder
+NETCDF_NAME = "sweep.nc"
+CSV_NAME = "summary.csv"
+PLOTS_NAME = "plots"
 _CHUNK_RE = re.compile(r"^chunk-(\d{6,})\.npz$")
 
 
@@ -43,22 +55,59 @@ class SweepMismatchError(RailvibError):
     """The output folder holds chunks of a different sweep."""
 
 
-def fingerprint(spec: dict[str, Any]) -> str:
+def default_output_folder(sweep_file: str | Path) -> Path:
+    """The output folder of a sweep file run without ``--output``.
+
+    Parameters
+    ----------
+    sweep_file : str or pathlib.Path
+        The sweep file.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<sweep file stem>.sweep``, relative to the current folder (not to the
+        sweep file), e.g. ``temp_speed.sweep`` for ``cases/temp_speed.toml``.
+    """
+    return Path(f"{Path(sweep_file).stem}.sweep")
+
+
+def default_plot_folder(result: str | Path) -> Path:
+    """The folder that the plots of a sweep result go to when none is given.
+
+    Parameters
+    ----------
+    result : str or pathlib.Path
+        A sweep folder, its ``sweep.zarr`` store or a netCDF export.
+
+    Returns
+    -------
+    pathlib.Path
+        ``RESULT/plots`` for a sweep folder, else ``plots`` next to the store or file.
+    """
+    result = Path(result)
+    folder = result if result.is_dir() and result.suffix != ".zarr" else result.parent
+    return folder / PLOTS_NAME
+
+
+def fingerprint(spec: SweepSpec) -> str:
     """SHA-256 of the resolved sweep, the contents of data files it names, and the version.
 
     Parameters
     ----------
-    spec : dict
-        A resolved sweep (:func:`railvib.sweep.spec.sweep_from_dict`).
+    spec : SweepSpec
+        A resolved sweep (:func:`railvib.sweep.spec.sweep_from_dict`); hashed as
+        :meth:`~railvib.sweep.spec.SweepSpec.as_dict`.
 
     Returns
     -------
     str
         Hex digest.
     """
-    files = {p: _file_hash(p) for p in sorted(_data_paths(spec))}
+    data = spec.as_dict()
+    files = {p: _file_hash(p) for p in sorted(_data_paths(data))}
     blob = json.dumps(
-        {"spec": spec, "files": files, "railvib": railvib_version()}, sort_keys=True, default=str
+        {"spec": data, "files": files, "railvib": railvib_version()}, sort_keys=True, default=str
     )
     return hashlib.sha256(blob.encode()).hexdigest()
 
@@ -91,11 +140,11 @@ class ChunkStore:
     ----------
     root : str or pathlib.Path
         The sweep's output folder.
-    spec : dict
+    spec : SweepSpec
         The resolved sweep.
     """
 
-    def __init__(self, root: str | Path, spec: dict[str, Any]) -> None:
+    def __init__(self, root: str | Path, spec: SweepSpec) -> None:
         self.root = Path(root)
         self.spec = spec
         self.layout = SweepLayout(spec)
@@ -153,8 +202,9 @@ class ChunkStore:
         n_done = len(list(self.chunk_dir.glob("chunk-*.npz"))) if self.chunk_dir.exists() else 0
         what = []
         old_spec = old.get("spec") or {}
+        new_spec = self.spec.as_dict()
         for key in ("base_case", "axes", "chunk_size", "variables", "summary_variable", "mode"):
-            if old_spec.get(key) != self.spec.get(key):
+            if old_spec.get(key) != new_spec.get(key):
                 what.append(key)
         if old.get("railvib_version") != self._manifest()["railvib_version"]:
             what.append("railvib version")
@@ -175,7 +225,7 @@ class ChunkStore:
             "block": list(lay.block),
             "n_cases": lay.n_cases,
             "n_chunks": lay.n_chunks,
-            "spec": self.spec,
+            "spec": self.spec.as_dict(),
         }
 
     def done(self) -> set[int]:

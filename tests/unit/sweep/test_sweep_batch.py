@@ -38,7 +38,7 @@ def test_frf_many_speeds_equals_frf_at_each_speed():
 
 
 def _case_at(spec, index):
-    d = spec["base_case"]
+    d = spec.base_case_dict()
     for field, value in SweepLayout(spec).overrides(index):
         d = merge_case_dicts(d, nested_override(field, value))
     return railvib.case_from_dict(d)
@@ -81,7 +81,7 @@ def test_chunk_equals_railvib_run_case_by_case(axes):
     lay = SweepLayout(spec)
     assert lay.n_chunks == 1
     out = compute_chunk(spec, 0)
-    bands = spec["base_case"]["output"]["rms_bands"]
+    bands = spec.rms_bands
     for i, index in enumerate(lay.chunk_indices(0)):
         ds = railvib.run(_case_at(spec, index))
         assert _max_rel(out["psd_acceleration"][i], ds.psd_acceleration.values) < RTOL

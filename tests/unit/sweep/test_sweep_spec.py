@@ -27,7 +27,7 @@ def test_ranges_values_and_log_ranges_resolve():
             ]
         )
     )
-    vals = [ax["values"] for ax in spec["axes"]]
+    vals = [list(ax.values) for ax in spec.axes]
     assert vals[0] == [40.0, 80.0, 120.0, 160.0]  # stop included where it lands
     assert vals[1] == [-40.0, 0.0, 40.0]
     # log range: exact decades up to rounding of geomspace (1 ulp-level reason)
@@ -134,8 +134,8 @@ def test_base_file_plus_overrides(tmp_path):
     }
     (tmp_path / "s.toml").write_text(tomli_w.dumps(sweep))
     spec = load_sweep(tmp_path / "s.toml")
-    assert spec["base_case"]["speed_kmh"] == 120.0
-    assert spec["base_case"]["track"]["pad"]["model"] == "fractional_zener"
+    assert spec.base_case["speed_kmh"] == 120.0
+    assert spec.base_case["track"]["pad"]["model"] == "fractional_zener"
     with pytest.raises(CaseError, match="readable"):
         load_sweep(tmp_path / "missing.toml")
 
