@@ -2,15 +2,18 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from railvib.case.schema import Case
 from railvib.contact import hertz_stiffness
 from railvib.coupling import CoupledSystem
 from railvib.grid import FrequencyGrid
-from railvib.pads.base import PadModel
-from railvib.spectra.base import SpatialSpectrum
-from railvib.track.periodic import PeriodicTrack, Rail
+from railvib.pads import PADS, PadModel
+from railvib.pads.scaled import ScaledPad
+from railvib.spectra import SPECTRA, SpatialSpectrum
+from railvib.track import DEFAULT_TRACK_MODEL, TRACKS, PeriodicTrack, Rail
 from railvib.units import kmh_to_ms
-from railvib.vehicle import PitchPlaneParameters, Vehicle, pitch_plane_10dof
+from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES, Vehicle
 
 __all__ = [
     "build_grid",
@@ -24,22 +27,19 @@ __all__ = [
 
 
 def build_vehicle(case: Case) -> Vehicle:
-    """The 10-DOF pitch-plane vehicle of the case."""
-    return pitch_plane_10dof(PitchPlaneParameters(**case.vehicle.model_dump()))
+    """The vehicle of the case (its ``[vehicle]`` model assembled)."""
+    model = VEHICLES.get(DEFAULT_VEHICLE_MODEL).build(**case.vehicle.model_dump())
+    return model.vehicle()
 
 
 def build_pad(case: Case) -> PadModel:
     """The railpad model of one rail seat (before any rail_pair doubling)."""
-    from railvib.pads import pad_from_dict
-
-    return pad_from_dict(dict(case.track.pad), field="track.pad")
+    return PADS.from_dict(dict(case.track.pad), "track.pad")
 
 
 def build_spectrum(case: Case) -> SpatialSpectrum:
     """The irregularity spectrum of the case."""
-    from railvib.spectra import spectrum_from_dict
-
-    return spectrum_from_dict(dict(case.irregularity), field="irregularity")
+    return SPECTRA.from_dict(dict(case.irregularity), "irregularity")
 
 
 def _rail_multiplier(case: Case) -> float:
@@ -48,21 +48,23 @@ def _rail_multiplier(case: Case) -> float:
 
 def build_track(case: Case) -> PeriodicTrack:
     """The periodic track; in ``rail_pair`` mode the beam and pads stand for both rails."""
-    from railvib.pads.scaled import ScaledPad
-
     n = _rail_multiplier(case)
-    r = case.track.rail
-    rail = Rail(
-        n * r.bending_stiffness,
-        n * r.mass_per_length,
-        r.loss_factor,
-        shear_stiffness=None if r.shear_stiffness is None else n * r.shear_stiffness,
-        rotary_inertia=n * r.rotary_inertia,
-    )
+    rail = Rail(**case.track.rail.model_dump())
     pad = build_pad(case)
     if n != 1.0:
+        shear = None if rail.shear_stiffness is None else n * rail.shear_stiffness
+        rail = replace(
+            rail,
+            bending_stiffness=n * rail.bending_stiffness,
+            mass_per_length=n * rail.mass_per_length,
+            shear_stiffness=shear,
+            rotary_inertia=n * rail.rotary_inertia,
+        )
         pad = ScaledPad(pad, n)
-    return PeriodicTrack(rail, pad, case.track.sleeper_spacing, case.track.pad_temperature_c)
+    values = {**case.track.model_dump(), "rail": rail, "pad": pad}
+    track = TRACKS.get(DEFAULT_TRACK_MODEL).build(**values)
+    assert isinstance(track, PeriodicTrack), "the default track is the rigid-base periodic track"
+    return track
 
 
 def contact_stiffness(case: Case, vehicle: Vehicle | None = None) -> float:

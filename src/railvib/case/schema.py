@@ -15,10 +15,13 @@ from pydantic import Field, model_validator
 
 from railvib.case.sections import Section, section_model, table_section
 from railvib.errors import CaseError
+from railvib.registry import Registry
+from railvib.spectra import SPECTRA
 from railvib.track import DEFAULT_TRACK_MODEL, TRACKS, Rail
 from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES
 
 __all__ = [
+    "FAMILY_TABLES",
     "Case",
     "ContactSection",
     "FrequencySection",
@@ -126,7 +129,7 @@ class Case(Section):
     track: TrackSection
     contact: ContactSection
     irregularity: dict[str, Any] = Field(
-        ..., description="irregularity spectrum (type = fra | shitai | combined | tabulated | ...)"
+        ..., description="irregularity spectrum (type = <name>: `railvib models spectrum`)"
     )
     frequency: FrequencySection
     output: OutputSection = Field(default_factory=OutputSection)
@@ -134,3 +137,14 @@ class Case(Section):
     def to_toml(self) -> str:
         """The full, resolved case as TOML text (stored with every result)."""
         return tomli_w.dumps(self.model_dump(mode="json", exclude_none=True))
+
+
+#: the family tables of a case (location -> family): free tables naming a member
+FAMILY_TABLES: dict[tuple[str, ...], Registry[Any]] = {
+    **{
+        ("track", p.key): p.family
+        for p in TRACKS.get(DEFAULT_TRACK_MODEL).parameters
+        if p.kind == "member" and p.family is not None
+    },
+    ("irregularity",): SPECTRA,
+}

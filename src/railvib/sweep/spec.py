@@ -45,8 +45,10 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
-from railvib.case import Case, case_from_dict, merge_case_dicts
+from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_dicts
+from railvib.case.errors import case_error
 from railvib.errors import CaseError
+from railvib.presets import load_preset
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
 
 __all__ = [
@@ -511,7 +513,7 @@ def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
     try:
         spec = SweepFile.model_validate(data)
     except ValidationError as exc:
-        raise _sweep_error(exc) from None
+        raise case_error(exc, SweepFile) from None
     base_case = _resolve_base(spec, base_dir)
     axes = _resolve_axes(spec, base_case, base_dir)
     return SweepSpec(
@@ -544,8 +546,6 @@ def _case_dump(case: Case) -> dict[str, Any]:
 def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
     data: dict[str, Any] = {}
     if spec.base is not None:
-        from railvib.case import load_case
-
         p = Path(spec.base)
         data = _case_dump(load_case(p if p.is_absolute() else base_dir / p))
         if spec.case and "preset" in spec.case:
@@ -554,8 +554,6 @@ def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
         override = copy.deepcopy(spec.case)
         preset = override.pop("preset", None)
         if preset is not None:
-            from railvib.presets import load_preset
-
             data = load_preset(preset)
         data = merge_case_dicts(data, override)
     return _case_dump(case_from_dict(data, base_dir=base_dir))
@@ -621,8 +619,6 @@ def _check_temperature_axis(base: dict[str, Any], fields: list[str], base_dir: P
         f == "track.pad" or f.startswith("track.pad.") for f in fields
     ):
         return
-    from railvib.case import build_pad
-
     pad = build_pad(case_from_dict(base, base_dir=base_dir))
     if not pad.temperature_dependent:
         raise CaseError(
@@ -651,29 +647,3 @@ TEMPERATURE_FIELD = "track.pad_temperature_c"
 
 def _canonical(value: Any) -> str:
     return json.dumps(value, sort_keys=True, default=str)
-
-
-def _sweep_error(exc: ValidationError) -> CaseError:
-    """Convert the first pydantic error to a one-line CaseError with the dotted field name."""
-    err = exc.errors()[0]
-    inner = (err.get("ctx") or {}).get("error")
-    loc = _indexed(err["loc"])
-    if isinstance(inner, CaseError):
-        field = f"{loc}.{inner.field}" if loc else inner.field
-        return CaseError(field, inner.value, inner.allowed)
-    kind = err["type"]
-    if kind == "missing":
-        return CaseError(loc, "<missing>", "required")
-    if kind == "extra_forbidden":
-        return CaseError(loc, err.get("input"), "unknown key")
-    return CaseError(loc or "sweep", err.get("input"), err["msg"])
-
-
-def _indexed(loc: tuple[Any, ...]) -> str:
-    out = ""
-    for part in loc:
-        if isinstance(part, int):
-            out += f"[{part}]"
-        else:
-            out += f".{part}" if out else str(part)
-    return out
