@@ -14,8 +14,9 @@ import xarray as xr  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from railvib.case import Case  # noqa: E402
+from railvib.case import Case, build_pad  # noqa: E402
 from railvib.io import save_figure  # noqa: E402
+from railvib.plot.pads import plot_stiffness_vs_frequency  # noqa: E402
 from railvib.plot.psd import plot_psd  # noqa: E402
 from railvib.reproduce.metrics import peak, peak_frequency  # noqa: E402
 from railvib.reproduce.study import (  # noqa: E402
@@ -119,9 +120,6 @@ def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path) -> Path:
     Drawn from the pad models of the study's cases (the paper's log-linear law with
     kappa = 0.07 held below f0), on log-log axes with the paper's 100 Hz marked.
     """
-    from railvib.case import build_pad
-    from railvib.plot.pads import plot_stiffness_vs_frequency
-
     f = np.geomspace(1.0, 1000.0, 200)
     curves = {
         float(cases[key].track.pad_temperature_c or 0.0): build_pad(cases[key]).stiffness(f)

@@ -9,15 +9,16 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib.case import build_grid, build_system, case_from_dict
+from railvib.case import Case, build_grid, build_system, case_from_dict
+from railvib.errors import CaseError
 from railvib.io import atomic_path, railvib_version
 from railvib.results.dataset import PSD_CONVENTION, save_netcdf
 from railvib.results.stats import summary_attrs, summary_names
 from railvib.results.variables import VARIABLES
 from railvib.sweep.batch import case_labels
+from railvib.sweep.folder import CSV_NAME, NETCDF_NAME, PLOTS_NAME
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
-from railvib.sweep.store import CSV_NAME, NETCDF_NAME, PLOTS_NAME
 
 __all__ = [
     "field_unit",
@@ -42,8 +43,6 @@ _SUFFIX_UNITS = (
 
 def field_unit(field: str) -> str:
     """Return the unit of a dotted case field, from the schema or the field name's suffix."""
-    from railvib.case.schema import Case
-
     model: Any = Case
     for part in field.split("."):
         info = getattr(model, "model_fields", {}).get(part)
@@ -146,8 +145,6 @@ def load_sweep_dataset(path: str | Path) -> xr.Dataset:
     xarray.Dataset
         Loaded into memory.
     """
-    from railvib.errors import CaseError
-
     path = Path(path)
     if path.is_dir() and (path / "sweep.zarr").is_dir():
         path = path / "sweep.zarr"
@@ -210,7 +207,7 @@ def save_sweep_extras(
     if csv:
         written.append(save_sweep_csv(ds, out / CSV_NAME))
     if plots:
-        from railvib.plot.sweep import save_sweep_plots
+        from railvib.plot.sweep import save_sweep_plots  # matplotlib: only when plotting
 
         written.extend(save_sweep_plots(ds, out / PLOTS_NAME))
     return written

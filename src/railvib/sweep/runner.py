@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 from railvib.errors import RailvibError
 from railvib.sweep.batch import compute_chunk
 from railvib.sweep.layout import SweepLayout
+from railvib.sweep.progress import case_progress
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.store import ChunkStore
 
@@ -203,6 +204,4 @@ def _progress(
 ) -> AbstractContextManager[Callable[[int], None]]:
     if not enabled:
         return nullcontext(lambda n: None)
-    from railvib.sweep.progress import case_progress
-
     return case_progress(total, done)

@@ -31,10 +31,25 @@ from numpy.typing import NDArray
 
 from railvib.errors import RailvibError
 from railvib.io import atomic_path, railvib_version
+from railvib.sweep.dataset import sweep_dataset
+from railvib.sweep.folder import (
+    CSV_NAME,
+    MANIFEST,
+    NETCDF_NAME,
+    PLOTS_NAME,
+    ZARR_NAME,
+    default_output_folder,
+    default_plot_folder,
+)
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
 
 __all__ = [
+    "CSV_NAME",
+    "MANIFEST",
+    "NETCDF_NAME",
+    "PLOTS_NAME",
+    "ZARR_NAME",
     "ChunkStore",
     "SweepMismatchError",
     "default_output_folder",
@@ -42,52 +57,11 @@ __all__ = [
     "fingerprint",
 ]
 
-MANIFEST = "manifest.json"
-ZARR_NAME = "sweep.zarr"
-#: optional exports of a sweep folder
-NETCDF_NAME = "sweep.nc"
-CSV_NAME = "summary.csv"
-PLOTS_NAME = "plots"
 _CHUNK_RE = re.compile(r"^chunk-(\d{6,})\.npz$")
 
 
 class SweepMismatchError(RailvibError):
     """The output folder holds chunks of a different sweep."""
-
-
-def default_output_folder(sweep_file: str | Path) -> Path:
-    """The output folder of a sweep file run without ``--output``.
-
-    Parameters
-    ----------
-    sweep_file : str or pathlib.Path
-        The sweep file.
-
-    Returns
-    -------
-    pathlib.Path
-        ``<sweep file stem>.sweep``, relative to the current folder (not to the
-        sweep file), e.g. ``temp_speed.sweep`` for ``cases/temp_speed.toml``.
-    """
-    return Path(f"{Path(sweep_file).stem}.sweep")
-
-
-def default_plot_folder(result: str | Path) -> Path:
-    """The folder that the plots of a sweep result go to when none is given.
-
-    Parameters
-    ----------
-    result : str or pathlib.Path
-        A sweep folder, its ``sweep.zarr`` store or a netCDF export.
-
-    Returns
-    -------
-    pathlib.Path
-        ``RESULT/plots`` for a sweep folder, else ``plots`` next to the store or file.
-    """
-    result = Path(result)
-    folder = result if result.is_dir() and result.suffix != ".zarr" else result.parent
-    return folder / PLOTS_NAME
 
 
 def fingerprint(spec: SweepSpec) -> str:
@@ -289,8 +263,6 @@ class ChunkStore:
             sweep dimensions; summary variables over ``response`` and the sweep
             dimensions.
         """
-        from railvib.sweep.dataset import sweep_dataset
-
         lay = self.layout
         arrays: dict[str, NDArray[Any]] = {}
         for cid in range(lay.n_chunks):
