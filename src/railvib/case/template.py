@@ -1,4 +1,4 @@
-"""Render the fully commented default case from the schema and the default preset."""
+"""Render the fully commented case file of a preset from the schema and the declarations."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import Any
 import tomli_w
 from pydantic import BaseModel
 
-from railvib.case.schema import Case
+from railvib.case.schema import FAMILY_TABLES, Case
 from railvib.presets import DEFAULT_PRESET, load_preset
 
 __all__ = ["render_template"]
@@ -21,50 +21,43 @@ def _comment(info: Any) -> str:
     return f"# {doc}{f' [{unit}]' if unit else ''}{req}"
 
 
-def _section(model: type[BaseModel], values: dict[str, Any], prefix: str) -> list[str]:
+def _section(model: type[BaseModel], values: dict[str, Any], path: tuple[str, ...]) -> list[str]:
+    """Lines of one section: its keys with comments, then its sub-tables."""
     lines: list[str] = []
-    tables: list[tuple[str, Any, Any]] = []
+    tables: list[list[str]] = []
     for name, info in model.model_fields.items():
         value = values.get(name)
+        here = (*path, name)
+        header = ".".join(here)
         annotation = info.annotation
-        if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-            tables.append((name, annotation, value or {}))
-            continue
-        if isinstance(value, dict):
-            tables.append((name, None, value))
+        if here in FAMILY_TABLES and isinstance(value, dict):
+            tables.append(FAMILY_TABLES[here].template_lines(value, header))
+        elif isinstance(annotation, type) and issubclass(annotation, BaseModel):
+            head = [f"# {annotation.__doc__.strip().splitlines()[0]}"] if annotation.__doc__ else []
+            tables.append([*head, f"[{header}]", *_section(annotation, value or {}, here)])
+        else:
             lines.append(_comment(info))
-            continue
-        lines.append(_comment(info))
-        if value is None:
-            lines.append(f"# {name} = ...")
-        else:
-            lines.append(tomli_w.dumps({name: value}).strip())
-    for name, sub_model, value in tables:
-        header = f"{prefix}{name}"
-        lines.append("")
-        lines.append(f"[{header}]")
-        if sub_model is not None:
-            if sub_model.__doc__:
-                lines.insert(len(lines) - 1, f"# {sub_model.__doc__.strip().splitlines()[0]}")
-            lines.extend(_section(sub_model, value, f"{header}."))
-        else:
-            lines.extend(_free_table(value, header))
+            lines.append(
+                f"# {name} = ..." if value is None else tomli_w.dumps({name: value}).strip()
+            )
+    for table in tables:
+        lines += ["", *table]
     return lines
 
 
-def _free_table(value: dict[str, Any], header: str) -> list[str]:
-    flat = {k: v for k, v in value.items() if not isinstance(v, dict)}
-    lines = tomli_w.dumps(flat).strip().splitlines() if flat else []
-    for k, v in value.items():
-        if isinstance(v, dict):
-            lines.append("")
-            lines.append(f"[{header}.{k}]")
-            lines.extend(_free_table(v, f"{header}.{k}"))
-    return lines
+def _families_header() -> list[str]:
+    lines = []
+    for location, family in FAMILY_TABLES.items():
+        names = ", ".join(family.names())
+        lines.append(f"# [{'.'.join(location)}] {family.tag}s: {names}.")
+    return [*lines, "#   (`railvib models` lists every model with its keys and units.)"]
 
 
 def render_template(preset: str = DEFAULT_PRESET) -> str:
     """A complete, commented case file whose values are those of `preset`.
+
+    Every key carries its description and unit as a comment; the keys of the
+    pad and irregularity tables come from the chosen models' declarations.
 
     Parameters
     ----------
@@ -81,9 +74,7 @@ def render_template(preset: str = DEFAULT_PRESET) -> str:
         f"# Values below are those of preset {preset!r}. Instead of a full file you may write",
         f'#   preset = "{preset}"',
         "# and override only the keys you change.",
-        "# [track.pad] models: spring_damper, hysteretic, log_linear, constant_phase,",
-        "#   fractional_zener, generalized_maxwell, tabulated (see `railvib pad --help`).",
-        "# [irregularity] types: fra, shitai, sato, german, chinese_hsr, combined, tabulated.",
+        *_families_header(),
         "",
     ]
-    return "\n".join(head + _section(Case, load_preset(preset), "")) + "\n"
+    return "\n".join(head + _section(Case, load_preset(preset), ())) + "\n"

@@ -1,0 +1,17 @@
+"""Derived outputs: checks and engineering criteria computed from a result dataset.
+
+Each output is a registered member of :data:`OUTPUTS` in a module of its own;
+:func:`derive` adds the outputs a run asks for to its dataset, with units.
+"""
+
+from railvib.outputs.base import DEFAULT_OUTPUTS, OUTPUTS, DerivedOutput, derive
+from railvib.outputs.contact import LOSS_OF_CONTACT_NOTE, ContactCheck
+
+__all__ = [
+    "DEFAULT_OUTPUTS",
+    "LOSS_OF_CONTACT_NOTE",
+    "OUTPUTS",
+    "ContactCheck",
+    "DerivedOutput",
+    "derive",
+]
