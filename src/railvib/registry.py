@@ -144,15 +144,17 @@ class Parameter:
         """``(operator, bound)`` pairs, e.g. ``[(">", 0.0)]``."""
         return [(op, float(getattr(self, a))) for a, op in _OPS if getattr(self, a) is not None]
 
-    def describe_allowed(self) -> str:
-        """What the parameter accepts, in words (bounds, choices, unit)."""
+    def describe_allowed(self, with_unit: bool = True) -> str:
+        """What the parameter accepts, in words (bounds, choices and, if asked, the unit)."""
         if self.allowed is not None:
             return self.allowed
-        unit = f" ({self.unit})" if self.unit and self.unit != "-" else ""
+        unit = f" ({self.unit})" if with_unit and self.unit and self.unit != "-" else ""
         if self.choices is not None:
             return "one of " + ", ".join(repr(c) for c in self.choices) + unit
         if self.kind == "boolean":
             return "true or false"
+        if self.kind in ("text", "path"):
+            return {"text": "text", "path": "a file path"}[self.kind]
         parts = [f"{op} {bound!r}" for op, bound in self.bounds]
         return (" and ".join(parts) or "any finite value") + unit
 
@@ -440,14 +442,32 @@ class Registry(Generic[T]):
         The key that names the member in a table (``"model"``, ``"type"``).
     style : {"must", "finite"}
         Wording of value errors (see :func:`check_value`).
+    plural : str, optional
+        Plural of `family` (default: `family` + "s").
+    where : str
+        Where its tables stand in a case file, for the docs (``"[track.pad]"``).
+    tagged : bool
+        Whether its tables name their member with `tag` (false while a family has
+        one member whose table carries no tag, e.g. ``[vehicle]``).
     """
 
     def __init__(
-        self, family: str, base: type, tag: str, *, style: Literal["must", "finite"] = "must"
+        self,
+        family: str,
+        base: type,
+        tag: str,
+        *,
+        style: Literal["must", "finite"] = "must",
+        plural: str | None = None,
+        where: str = "",
+        tagged: bool = True,
     ) -> None:
         if tag not in TAG_KEYS:
             raise ValueError(f"a family's tag is one of {TAG_KEYS} (merge_tables relies on it)")
         self.family = family
+        self.plural = plural or f"{family}s"
+        self.where = where
+        self.tagged = tagged
         self.base = base
         self.tag = tag
         self.style = style
@@ -685,13 +705,19 @@ class Registry(Generic[T]):
 
     def markdown(self) -> str:
         """A Markdown section per member: its description and a table of its keys."""
-        out = [f"## {self.family.capitalize()}s (`{self.tag} = ...`)", ""]
+        where = [f"`{self.where}`"] if self.where else []
+        where += [f"`{self.tag} = ...`"] if self.tagged else []
+        out = [f"## {self.plural.capitalize()}" + (f" ({', '.join(where)})" if where else ""), ""]
         for member in self:
             alias = (
                 f" (alias {', '.join(f'`{a}`' for a in member.aliases)})" if member.aliases else ""
             )
             out += [f"### `{member.name}`{alias}", "", member.doc, ""]
             out += _parameter_table(member.parameters)
+            for p in member.parameters:
+                if p.kind == "table" and p.table is not None:
+                    out += [f"Keys of its `{p.key}` table:", ""]
+                    out += _parameter_table(declared_parameters(p.table))
         for key, (params, _) in self.extra_tables.items():
             out += [f"### Optional `[...{key}]` table of any {self.family}", ""]
             out += _parameter_table(params)
@@ -717,10 +743,23 @@ class _LiveView(Mapping[str, V]):
         return len(self._data)
 
 
+def _toml_value(value: Any) -> str:
+    """`value` as written in a TOML file (``true``, ``"low"``, ``5.0``)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return f'"{value}"'
+    return repr(value)
+
+
 def _comment(p: Parameter) -> str:
     unit = f" [{p.unit}]" if p.unit not in ("", "-") else ""
-    default = "" if p.required else f" (optional, default {p.default!r})"
+    default = "" if p.required else f" (optional, default {_toml_value(p.default)})"
     return f"{p.doc}{unit}{default}"
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|")
 
 
 def _parameter_table(params: Sequence[Parameter]) -> list[str]:
@@ -728,9 +767,19 @@ def _parameter_table(params: Sequence[Parameter]) -> list[str]:
         return ["No parameters.", ""]
     rows = ["| key | unit | default | allowed | meaning |", "|---|---|---|---|---|"]
     for p in params:
-        default = "required" if p.required else f"`{p.default!r}`"
-        allowed = "a table" if p.kind == "member" else p.describe_allowed()
-        rows.append(f"| `{p.key}` | {p.unit or '-'} | {default} | {allowed} | {p.doc} |")
+        if p.required:
+            default = "required"
+        elif p.default is None:
+            default = "omitted"
+        else:
+            default = f"`{_toml_value(p.default)}`"
+        tables = {
+            "member": f"table: any {p.family.family if p.family else 'model'}",
+            "table": "table (keys below)",
+        }
+        allowed = tables.get(p.kind) or p.describe_allowed(with_unit=False)
+        cells = (f"`{p.key}`", p.unit or "-", default, allowed, p.doc)
+        rows.append("| " + " | ".join(_cell(c) for c in cells) + " |")
     return [*rows, ""]
 
 

@@ -2,19 +2,30 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
+import pandas as pd
 import xarray as xr
 
 from railvib.case import Case, build_grid, build_spectrum, build_system, load_case
 from railvib.coupling import CoupledSystem
 from railvib.grid import FrequencyGrid
-from railvib.io import railvib_version
-from railvib.outputs import DEFAULT_OUTPUTS, LOSS_OF_CONTACT_NOTE, derive
-from railvib.results.dataset import build_dataset
+from railvib.io import railvib_version, write_text
+from railvib.outputs import DEFAULT_OUTPUTS, LOSS_OF_CONTACT_NOTE, derive, linearity_note
+from railvib.results.dataset import build_dataset, save_csv, save_netcdf
+from railvib.results.stats import summary
 from railvib.spectra.base import SpatialSpectrum
 
-__all__ = ["LOSS_OF_CONTACT_NOTE", "case_toml", "railvib_version", "run", "run_system"]
+__all__ = [
+    "LOSS_OF_CONTACT_NOTE",
+    "RunOutput",
+    "case_toml",
+    "railvib_version",
+    "run",
+    "run_system",
+    "run_to_folder",
+]
 
 
 def case_toml(case: Case) -> str:
@@ -93,3 +104,65 @@ def run(case: Case | str | Path) -> xr.Dataset:
         build_spectrum(case),
         attrs={"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
     )
+
+
+@dataclass(frozen=True, eq=False)
+class RunOutput:
+    """What :func:`run_to_folder` computed and wrote.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        The result (see :func:`run`).
+    summary : pandas.DataFrame
+        Peak, dominant frequency and RMS per response (see :func:`railvib.summary`).
+    files : tuple of pathlib.Path
+        Every file written.
+    notes : tuple of str
+        Warnings for the reader (e.g. likely loss of contact).
+    """
+
+    dataset: xr.Dataset
+    summary: pd.DataFrame
+    files: tuple[Path, ...]
+    notes: tuple[str, ...]
+
+
+def run_to_folder(case: Case | str | Path, outdir: str | Path, *, plots: bool = True) -> RunOutput:
+    """Run one case and write its dataset, summary and plots to `outdir` (``railvib run``).
+
+    Writes ``results.nc``, ``psd_acceleration.csv``, ``psd_displacement.csv``,
+    ``summary.csv``, ``summary.md`` and, with `plots`, one PNG per response group,
+    each atomically.
+
+    Parameters
+    ----------
+    case : Case, str or pathlib.Path
+        A validated case or a TOML case file.
+    outdir : str or pathlib.Path
+        Output folder (created if needed).
+    plots : bool
+        Draw the PSD overview figures.
+
+    Returns
+    -------
+    RunOutput
+    """
+    if not isinstance(case, Case):
+        case = load_case(case)
+    outdir = Path(outdir)
+    ds = run(case)
+    table = summary(ds, bands=case.output.rms_bands).to_dataframe()
+    files = [
+        save_netcdf(ds, outdir / "results.nc"),
+        save_csv(ds, outdir / "psd_acceleration.csv"),
+        save_csv(ds, outdir / "psd_displacement.csv", variable="psd_displacement"),
+        write_text(outdir / "summary.csv", table.to_csv(float_format="%.6g")),
+        write_text(outdir / "summary.md", table.to_markdown(floatfmt=".4g") + "\n"),
+    ]
+    if plots:
+        from railvib.plot.psd import save_overview  # matplotlib: only when plotting
+
+        files += save_overview(ds, outdir)
+    note = linearity_note(ds)
+    return RunOutput(ds, table, tuple(files), () if note is None else (note,))

@@ -6,12 +6,14 @@ from pathlib import Path
 
 import click
 
+from railvib.errors import CaseError
+from railvib.padfit import PadFitJob, fit_pad_to_folder
+from railvib.pads import fittable_models
+
 __all__ = ["pad"]
 
 
 def _floats(text: str, name: str) -> list[float]:
-    from railvib.errors import CaseError
-
     try:
         return [float(x) for x in text.split(",") if x.strip()]
     except ValueError:
@@ -29,8 +31,7 @@ def pad() -> None:
     "--model",
     default="fractional_zener",
     show_default=True,
-    help="pad model: fractional_zener (zener), generalized_maxwell (prony), "
-    "spring_damper, hysteretic, log_linear, constant_phase",
+    help=f"pad model: {', '.join(fittable_models())} (aliases zener, prony)",
 )
 @click.option(
     "-o",
@@ -112,64 +113,20 @@ def fit(
     Without --tg or --c1/--c2 the WLF constants are fitted (needs several frequencies
     per temperature). pad.toml holds a [track.pad] table usable in a case file.
     """
-    import numpy as np
-
-    from railvib.errors import CaseError
-    from railvib.io import atomic_path, save_figure
-    from railvib.pads import WLF, fit_log_linear, fit_pad, pad_toml, read_measurements_csv
-    from railvib.plot.pads import plot_master_curve, plot_stiffness_vs_frequency
-
-    if tg is not None and (c1 is not None or c2 is not None):
-        raise CaseError("--tg", tg, "give either --tg or --c1 and --c2, not both")
-    if (c1 is None) != (c2 is None):
-        raise CaseError("--c1/--c2", (c1, c2), "give both")
-    wlf = None
-    if tg is not None:
-        wlf = WLF.universal(tg)
-    elif c1 is not None and c2 is not None:
-        wlf = WLF(c1, c2, t_ref if wlf_reference is None else wlf_reference)
-    temps = _floats(temperatures, "--temperatures")
-    f_band = _floats(band, "--band")
-    if len(f_band) != 2:
-        raise CaseError("--band", band, "two frequencies f_min,f_max (Hz)")
-
-    measurements = read_measurements_csv(data)
-    result = fit_pad(
-        measurements,
-        model,
-        t_ref,
-        wlf,
+    job = PadFitJob(
+        model=model,
+        reference_temperature_c=t_ref,
+        glass_transition_c=tg,
+        c1=c1,
+        c2_k=c2,
+        wlf_reference_temperature_c=wlf_reference,
         vertical_shift=not no_vertical_shift,
         expansion_coefficient_per_k=expansion_coefficient,
         n_terms=n_terms,
+        temperatures_c=tuple(_floats(temperatures, "--temperatures")),
+        band_hz=tuple(_floats(band, "--band")),  # type: ignore[arg-type]
         f0_hz=f0,
     )
-    lines = [result.summary()]
-    for t in temps:
-        ll = fit_log_linear(result.model, t, (f_band[0], f_band[1]), f0_hz=f0)
-        lines.append(
-            f"log-linear at {t:g} degC over {f_band[0]:g}-{f_band[1]:g} Hz: "
-            f"K0 = {ll.model.k0_n_per_m / 1e6:.1f} kN/mm at {f0:g} Hz, "
-            f"k = {ll.model.exponent:.3f} (rms {ll.rms_log10:.3f} decades)"
-        )
-    report = "\n".join(lines)
-
-    outdir.mkdir(parents=True, exist_ok=True)
-    header = f"railvib pad fit {data.name} --model {model}\n" + report
-    with atomic_path(outdir / "pad.toml") as tmp:
-        tmp.write_text(pad_toml(result.model, header=header), encoding="utf-8")
-
-    master = result.master
-    assert master is not None
-    fr = master.reduced_frequency_hz
-    f_curve = np.geomspace(fr.min(), fr.max(), 400)
-    axes = plot_master_curve(master, f_curve, result.model.stiffness(f_curve))
-    save_figure(axes[0], outdir / "master_curve.png", tight=False)
-
-    f_plot = np.geomspace(f_band[0], f_band[1], 200)
-    ax = plot_stiffness_vs_frequency(f_plot, {t: result.model.stiffness(f_plot, t) for t in temps})
-    ax.set_title(f"{data.name}: {model} with TTS")
-    save_figure(ax, outdir / "stiffness_vs_frequency.png")
-
-    click.echo(report)
-    click.echo(f"wrote {outdir / 'pad.toml'}, master_curve.png, stiffness_vs_frequency.png")
+    report = fit_pad_to_folder(data, outdir, job)
+    click.echo(report.text)
+    click.echo(f"wrote {', '.join(str(p) for p in report.files)}")

@@ -5,7 +5,7 @@ Each output is a registered member of :data:`OUTPUTS` in a module of its own;
 """
 
 from railvib.outputs.base import DEFAULT_OUTPUTS, OUTPUTS, DerivedOutput, derive
-from railvib.outputs.contact import LOSS_OF_CONTACT_NOTE, ContactCheck
+from railvib.outputs.contact import LOSS_OF_CONTACT_NOTE, ContactCheck, linearity_note
 
 __all__ = [
     "DEFAULT_OUTPUTS",
@@ -14,4 +14,5 @@ __all__ = [
     "ContactCheck",
     "DerivedOutput",
     "derive",
+    "linearity_note",
 ]

@@ -40,7 +40,9 @@ class DerivedOutput(ABC):
 
 
 #: every derived output railvib can add to a result
-OUTPUTS: Registry[DerivedOutput] = Registry("derived output", DerivedOutput, "type")
+OUTPUTS: Registry[DerivedOutput] = Registry(
+    "derived output", DerivedOutput, "type", where="computed for every run", tagged=False
+)
 
 #: the outputs every run computes
 DEFAULT_OUTPUTS = ("contact_check",)

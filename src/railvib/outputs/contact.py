@@ -16,7 +16,7 @@ from scipy.stats import norm
 
 from railvib.outputs.base import OUTPUTS, DerivedOutput
 
-__all__ = ["LOSS_OF_CONTACT_NOTE", "ContactCheck"]
+__all__ = ["LOSS_OF_CONTACT_NOTE", "ContactCheck", "linearity_note"]
 
 #: probability of loss of contact above which ``railvib run`` prints a note
 LOSS_OF_CONTACT_NOTE = 0.01
@@ -52,3 +52,27 @@ class ContactCheck(DerivedOutput):
                 },
             ),
         }
+
+
+def linearity_note(ds: xr.Dataset) -> str | None:
+    """A warning for the reader when loss of contact is likely (above :data:`LOSS_OF_CONTACT_NOTE`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result with the contact check (``loss_of_contact_probability``, ...).
+
+    Returns
+    -------
+    str or None
+        The note, or None when contact is almost surely kept.
+    """
+    worst = float(ds["loss_of_contact_probability"].max())
+    if worst <= LOSS_OF_CONTACT_NOTE:
+        return None
+    return (
+        f"note: dynamic contact force RMS {float(ds['contact_force_rms'].max()):.3g} N against "
+        f"a static load of {float(ds['static_contact_load'].min()):.3g} N: loss of wheel-rail "
+        f"contact has probability {worst:.1%} (Gaussian estimate). PEM assumes permanent "
+        "contact, so treat the results near the contact resonances with care."
+    )

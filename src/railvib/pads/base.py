@@ -149,4 +149,6 @@ class FitStart:
 
 
 #: every pad model a case file can name (``[track.pad] model = "..."``)
-PADS: Registry[PadModel] = Registry("pad model", PadModel, "model", style="must")
+PADS: Registry[PadModel] = Registry(
+    "pad model", PadModel, "model", style="must", where="[track.pad]"
+)

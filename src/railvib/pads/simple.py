@@ -201,7 +201,7 @@ class ConstantPhase(PadModel):
         "Hz", "reference frequency f0", default=5.0, gt=0.0, typical=(1.0, 10.0)
     )
     exponent: float = parameter(
-        "-", "log-log slope kappa of |K*|", default=0.07, ge=0.0, lt=1.0, typical=(0.0, 0.2)
+        "-", "log-log slope kappa of |K*|", default=0.07, ge=0.0, lt=1.0, typical=(0.02, 0.2)
     )
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -34,6 +34,7 @@ __all__ = [
     "TemperatureShifted",
     "tts_from_dict",
     "vertical_shift_factor",
+    "wlf_choice",
 ]
 
 #: "Universal" WLF constants at T0 = Tg (the seed attributes them to ISO 4664-1).
@@ -354,9 +355,18 @@ def tts_from_dict(base: PadModel, d: Any, field: str) -> TemperatureShifted:
             "give either glass_transition_c (degC) or both c1 and c2_k (K), not both",
         )
     try:
+        wlf = wlf_choice(
+            t_ref,
+            v["glass_transition_c"],
+            v["c1"],
+            v["c2_k"],
+            v["wlf_reference_temperature_c"],
+            field=field,
+        )
+        assert wlf is not None, "a tts table gives Tg or C1 and C2 (checked above)"
         return TemperatureShifted(
             base,
-            _wlf(v, t_ref, field),
+            wlf,
             t_ref,
             v["vertical_shift"],
             v["expansion_coefficient_per_k"],
@@ -370,21 +380,76 @@ def tts_from_dict(base: PadModel, d: Any, field: str) -> TemperatureShifted:
         raise CaseError(f"{field}.{key}", err.value, err.allowed) from None
 
 
-def _wlf(v: dict[str, Any], t_ref: float, field: str) -> WLF:
-    """The WLF law of a checked ``tts`` table."""
-    if v["c1"] is not None or v["c2_k"] is not None:
-        for key in ("c1", "c2_k"):
-            if v[key] is None:
-                raise CaseError(f"{field}.{key}", None, "missing; c1 and c2_k go together")
-        t_wlf = v["wlf_reference_temperature_c"]
-        return WLF(v["c1"], v["c2_k"], t_ref if t_wlf is None else t_wlf)
-    if v["wlf_reference_temperature_c"] is not None:
+def wlf_choice(
+    reference_temperature_c: float,
+    glass_transition_c: float | None = None,
+    c1: float | None = None,
+    c2_k: float | None = None,
+    wlf_reference_temperature_c: float | None = None,
+    *,
+    field: str = "tts",
+    names: Mapping[str, str] | None = None,
+) -> WLF | None:
+    """The WLF law a user chose: universal constants at Tg, or given C1 and C2 (or none).
+
+    Parameters
+    ----------
+    reference_temperature_c : float
+        Reference temperature of the pad model, degC (default WLF reference).
+    glass_transition_c : float, optional
+        Tg, degC: the universal constants C1 = 17.44, C2 = 51.6 K at Tg.
+    c1, c2_k : float, optional
+        Given WLF constants (dimensionless, K), together.
+    wlf_reference_temperature_c : float, optional
+        Temperature at which `c1` and `c2_k` apply, degC.
+    field : str
+        Dotted name used in errors (``"track.pad.tts"``).
+    names : mapping, optional
+        How the four choices are called in the error text where the user gave them
+        differently (e.g. ``{"glass_transition_c": "glass_transition_c (--tg)"}``).
+
+    Returns
+    -------
+    WLF or None
+        None when neither Tg nor C1/C2 is given.
+
+    Raises
+    ------
+    CaseError
+        Tg together with C1/C2, C1 without C2 (or the reverse), or a WLF reference
+        temperature without C1/C2.
+    """
+    name = {
+        key: (names or {}).get(key, key)
+        for key in ("glass_transition_c", "c1", "c2_k", "wlf_reference_temperature_c")
+    }
+    has_c = c1 is not None or c2_k is not None
+    if glass_transition_c is not None and has_c:
+        raise CaseError(
+            f"{field}.glass_transition_c",
+            glass_transition_c,
+            f"give either {name['glass_transition_c']} (degC) or both {name['c1']} and "
+            f"{name['c2_k']} (K), not both",
+        )
+    if has_c:
+        for key, value in (("c1", c1), ("c2_k", c2_k)):
+            if value is None:
+                raise CaseError(
+                    f"{field}.{name[key]}",
+                    None,
+                    f"missing; {name['c1']} and {name['c2_k']} go together",
+                )
+        t_wlf = wlf_reference_temperature_c
+        t0 = reference_temperature_c if t_wlf is None else t_wlf
+        return WLF(cast(float, c1), cast(float, c2_k), t0)  # both given: checked above
+    if wlf_reference_temperature_c is not None:
         raise CaseError(
             f"{field}.wlf_reference_temperature_c",
-            v["wlf_reference_temperature_c"],
-            "only with c1 and c2_k (glass_transition_c is the WLF reference)",
+            wlf_reference_temperature_c,
+            f"only with {name['c1']} and {name['c2_k']} ({name['glass_transition_c']} is the "
+            "WLF reference)",
         )
-    return WLF.universal(v["glass_transition_c"])
+    return None if glass_transition_c is None else WLF.universal(glass_transition_c)
 
 
 def tts_to_dict(model: TemperatureShifted) -> dict[str, Any]:

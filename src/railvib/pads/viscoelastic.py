@@ -48,7 +48,7 @@ class FractionalZener(PadModel):
         "N/m",
         "unrelaxed (high-frequency) stiffness K_inf, >= K0",
         gt=0.0,
-        typical=(1e8, 1e9),
+        typical=(2e8, 1e9),
         log=True,
     )
     tau_s: float = parameter("s", "relaxation time tau", gt=0.0, typical=(1e-6, 1e-2), log=True)

@@ -70,5 +70,10 @@ def temporal_psd(spectrum: SpatialSpectrum, f: ArrayLike, speed: float) -> NDArr
 
 #: every irregularity spectrum a case file can name (``[irregularity] type = "..."``)
 SPECTRA: Registry[SpatialSpectrum] = Registry(
-    "irregularity spectrum", SpatialSpectrum, "type", style="finite"
+    "irregularity spectrum",
+    SpatialSpectrum,
+    "type",
+    style="finite",
+    plural="irregularity spectra",
+    where="[irregularity]",
 )

@@ -38,7 +38,9 @@ class TrackModel(ABC):
 
 
 #: every track model a case file can describe
-TRACKS: Registry[TrackModel] = Registry("track model", TrackModel, "model")
+TRACKS: Registry[TrackModel] = Registry(
+    "track model", TrackModel, "model", where="[track]", tagged=False
+)
 
 #: the model of a case's ``[track]`` table (the paper's rail on pads over a rigid base)
 DEFAULT_TRACK_MODEL = "rigid_base"

@@ -40,7 +40,9 @@ class VehicleModel(ABC):
 
 
 #: every vehicle model a case file can describe
-VEHICLES: Registry[VehicleModel] = Registry("vehicle model", VehicleModel, "model")
+VEHICLES: Registry[VehicleModel] = Registry(
+    "vehicle model", VehicleModel, "model", where="[vehicle]", tagged=False
+)
 
 #: the model of a case's ``[vehicle]`` table (the paper's 10-DOF car)
 DEFAULT_VEHICLE_MODEL = "pitch_plane_10dof"
