@@ -31,7 +31,7 @@ _HEADER = """# Models
 
 Every model railvib can build from a case file, with its keys, units, defaults
 and allowed values. This page is generated from the models' own declarations
-(`railvib models --markdown > docs/models.md`); a test fails when it is stale.
+(`railvib models > docs/models.md`); a test fails when it is stale.
 How to add a model: `docs/extending.md`.
 """
 

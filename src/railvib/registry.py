@@ -217,7 +217,9 @@ def declared_parameters(cls: type) -> tuple[Parameter, ...]:
         spec = f.metadata.get("railvib")
         if spec is None:
             continue
-        kind = spec["kind"] or _ANNOTATION_KINDS.get(str(f.type).replace(" ", ""))
+        annotation = f.type.__name__ if isinstance(f.type, type) else str(f.type)
+        annotation = annotation.replace(" ", "").removesuffix("|None")
+        kind = spec["kind"] or _ANNOTATION_KINDS.get(annotation)
         if kind is None:
             raise TypeError(f"{cls.__name__}.{f.name}: give kind= (annotation {f.type!r})")
         default = REQUIRED if f.default is dataclasses.MISSING else f.default

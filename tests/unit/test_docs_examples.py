@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
 
 
-@pytest.mark.parametrize("doc", ["README.md", "docs/user-guide.md"])
+@pytest.mark.parametrize("doc", ["README.md", "docs/user-guide.md", "docs/extending.md"])
 def test_python_examples_in_docs_run(doc, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / doc).read_text(), flags=re.S)
@@ -41,3 +41,10 @@ def test_docstring_examples(module):
     result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0
     assert result.failed == 0
+
+
+def test_models_page_is_generated_from_the_declarations():
+    from railvib.models import models_markdown
+
+    page = (ROOT / "docs" / "models.md").read_text()
+    assert page == models_markdown(), "docs/models.md is stale: railvib models > docs/models.md"

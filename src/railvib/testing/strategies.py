@@ -36,7 +36,8 @@ VARIED_VEHICLE_FIELDS = (
 
 
 def _log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
-    return st.floats(math.log(lo), math.log(hi)).map(math.exp)
+    """Log-uniform in [lo, hi] (clipped: exp(log(lo)) may round just below lo)."""
+    return st.floats(math.log(lo), math.log(hi)).map(lambda x: min(max(math.exp(x), lo), hi))
 
 
 def _values(p: Parameter, depth: int = 0) -> st.SearchStrategy[Any] | None:
