@@ -36,15 +36,7 @@ def test_paper_case_three_ways_and_cli_outputs(paper_vehicle, paper_track, tmp_p
 @pytest.mark.slow
 @pytest.mark.validation
 def test_wheel_above_sleeper(paper_vehicle, paper_track):
-    res = validate_case(
-        paper_vehicle,
-        paper_track,
-        K_H,
-        0.0,
-        SPEED,
-        SPECTRUM,
-        settings=ValidationSettings.quick(),
-        seed=2,
-    )
+    system = CoupledSystem(paper_vehicle, paper_track, K_H, 0.0, SPEED)
+    res = validate_case(system, SPECTRUM, settings=ValidationSettings.quick(), seed=2)
     assert float(res.max_relative_error.max()) < 0.02
     assert float(res.fraction_inside.min()) >= 0.90

@@ -82,11 +82,7 @@ def run_validation(
     with Progress(*columns, console=console, transient=False) as bar:
         task = bar.add_task("Monte Carlo (Newmark steps)", total=monte_carlo_work(settings))
         result = validate_case(
-            system.vehicle,
-            system.track,
-            system.contact_stiffness,
-            system.leading_wheel_position,
-            system.speed,
+            system,
             spectrum,
             settings=settings,
             seed=seed,

@@ -16,18 +16,18 @@ welch_psd, welch_expectation, confidence_band
     Statistics.
 validate_case, ValidationSettings, ValidationResult, plot_overlays
     The three-way comparison of issue 5.
+
+Every reference model takes the :class:`~railvib.coupling.CoupledSystem` of the
+symplectic path (its parameters only); the older parameter-bundle call forms still
+work and emit a :class:`~railvib.errors.RailvibDeprecationWarning`.
 """
 
-from railvib.validation.case import (
-    ValidationResult,
-    ValidationSettings,
-    monte_carlo_work,
-    validate_case,
-)
+from railvib.validation.compare import validate_case
 from railvib.validation.coupled import FiniteCoupledSystem, FiniteFRF, finite_track_frf
 from railvib.validation.finite_track import FiniteTrack, hermite_element_matrices
 from railvib.validation.monte_carlo import MonteCarloResult, MonteCarloSettings, monte_carlo
 from railvib.validation.plots import DEFAULT_PLOT_RESPONSES, plot_overlays
+from railvib.validation.result import ValidationResult, ValidationSettings, monte_carlo_work
 from railvib.validation.samples import sample_profile, wheel_irregularities
 from railvib.validation.statistics import (
     WelchEstimate,
