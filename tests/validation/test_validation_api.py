@@ -14,6 +14,7 @@ import xarray as xr
 from railvib.coupling import CoupledSystem
 from railvib.errors import RailvibDeprecationWarning
 from railvib.pads import SpringDamper
+from railvib.results import load_netcdf
 from railvib.results.variables import VARIABLES
 from railvib.spectra import Combined, FRAClass, ShiTai
 from railvib.track import PeriodicTrack, Rail
@@ -24,6 +25,7 @@ from railvib.validation import (
     finite_track_frf,
     monte_carlo,
     validate_case,
+    write_validation,
 )
 from railvib.vehicle import PitchPlaneParameters, pitch_plane_10dof
 
@@ -139,3 +141,16 @@ def test_every_variable_has_real_units(tiny_result):
     units = tiny_result.frf.attrs["psd_units"]
     assert units[labels.index("carbody.pitch")] == "(rad/s^2)^2/Hz"
     assert units[labels.index("carbody.bounce")] == psd.units
+
+
+def test_written_datasets_load_back_identical(tiny_result, tmp_path):
+    write_validation(tiny_result, tmp_path, "tiny")
+    mc = load_netcdf(tmp_path / "tiny_mc.nc")
+    assert mc["inside"].dtype == bool
+    for name, da in tiny_result.mc.data_vars.items():
+        np.testing.assert_array_equal(mc[name].values, da.values)
+        assert mc[name].attrs == da.attrs
+    assert mc.attrs["psd_units"] == str(tiny_result.mc.attrs["psd_units"])
+    assert mc.attrs["realisations"] == 2
+    assert (tmp_path / "tiny_agreement.md").is_file()
+    assert not list(tmp_path.glob("*.part"))
