@@ -119,11 +119,12 @@ def run_validation(
     )
 
 
-def _output_folder(output: Path | None, outdir: Path | None) -> Path:
+def _output_folder(output: Path, outdir: Path | None) -> Path:
     """The folder from ``-o/--output`` or the deprecated ``--outdir``."""
     if outdir is None:
-        return output if output is not None else DEFAULT_OUTPUT
-    if output is not None:
+        return output
+    source = click.get_current_context().get_parameter_source("output")
+    if source is not click.core.ParameterSource.DEFAULT:
         raise click.UsageError("give the output folder once, with -o/--output")
     click.echo("warning: --outdir is deprecated; use -o/--output", err=True)
     return outdir
@@ -136,8 +137,8 @@ def _output_folder(output: Path | None, outdir: Path | None) -> Path:
     "-o",
     "--output",
     type=click.Path(file_okay=False, path_type=Path),
-    default=None,
-    show_default=str(DEFAULT_OUTPUT),
+    default=DEFAULT_OUTPUT,
+    show_default=True,
     help="Output folder for figures, tables and datasets.",
 )
 @click.option(
@@ -152,7 +153,7 @@ def _output_folder(output: Path | None, outdir: Path | None) -> Path:
 def validate(
     case_file: Path,
     quick: bool,
-    output: Path | None,
+    output: Path,
     outdir: Path | None,
     realisations: int | None,
     seed: int,
