@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["CaseError", "RailvibError", "SolverWarning"]
+__all__ = ["CaseError", "RailvibDeprecationWarning", "RailvibError", "SolverWarning"]
 
 
 class RailvibError(Exception):
@@ -37,3 +37,11 @@ class CaseError(RailvibError, ValueError):
 
 class SolverWarning(RuntimeWarning):
     """A numerical result may have lost accuracy (e.g. at the pinned-pinned frequency)."""
+
+
+class RailvibDeprecationWarning(DeprecationWarning):
+    """A public name or call form is deprecated; the message says what to call instead.
+
+    The deprecated form keeps working (same result) until it is removed in a later
+    release. Filter this class to silence or escalate railvib's deprecations alone.
+    """

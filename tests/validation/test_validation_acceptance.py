@@ -10,7 +10,7 @@ import pytest
 
 from railvib.coupling import CoupledSystem
 from railvib.spectra import Combined, FRAClass, ShiTai
-from railvib.validation import ValidationSettings, validate_case
+from railvib.validation import ValidationSettings, validate_case, validate_to_folder
 
 K_H = 9.873e8
 SPEED = 80 / 3.6
@@ -20,10 +20,9 @@ SPECTRUM = Combined(FRAClass(5), ShiTai())
 @pytest.mark.slow
 @pytest.mark.validation
 def test_paper_case_three_ways_and_cli_outputs(paper_vehicle, paper_track, tmp_path):
-    from railvib.cli.validate import run_validation
-
     system = CoupledSystem(paper_vehicle, paper_track, K_H, 0.3, SPEED)
-    res = run_validation(system, SPECTRUM, tmp_path, quick=True, seed=1, name="paper")
+    settings = ValidationSettings.quick()
+    res = validate_to_folder(system, SPECTRUM, tmp_path, settings=settings, seed=1, name="paper")
     assert float(res.max_relative_error.max()) < 0.02
     assert float(res.fraction_inside.min()) >= 0.90
     assert res.passed
@@ -36,15 +35,7 @@ def test_paper_case_three_ways_and_cli_outputs(paper_vehicle, paper_track, tmp_p
 @pytest.mark.slow
 @pytest.mark.validation
 def test_wheel_above_sleeper(paper_vehicle, paper_track):
-    res = validate_case(
-        paper_vehicle,
-        paper_track,
-        K_H,
-        0.0,
-        SPEED,
-        SPECTRUM,
-        settings=ValidationSettings.quick(),
-        seed=2,
-    )
+    system = CoupledSystem(paper_vehicle, paper_track, K_H, 0.0, SPEED)
+    res = validate_case(system, SPECTRUM, settings=ValidationSettings.quick(), seed=2)
     assert float(res.max_relative_error.max()) < 0.02
     assert float(res.fraction_inside.min()) >= 0.90

@@ -5,8 +5,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from railvib.coupling import CoupledSystem
 from railvib.pads import SpringDamper
-from railvib.track import Rail
+from railvib.track import PeriodicTrack, Rail
 from railvib.validation import (
     FiniteCoupledSystem,
     MonteCarloSettings,
@@ -25,14 +26,9 @@ def system():
     from railvib.vehicle import PitchPlaneParameters, pitch_plane_10dof
 
     p = PitchPlaneParameters(21920, 617310, 2550, 1750, 1420, 1.7e6, 5e3, 2.75e5, 3e4, 6.3, 1.1)
-    return FiniteCoupledSystem.build(
-        pitch_plane_10dof(p),
-        Rail(6.62e6, 60.64),
-        SpringDamper(5e7, 5e4),
-        0.6,
-        K_H,
-        0.3,
-        SPEED,
+    track = PeriodicTrack(Rail(6.62e6, 60.64), SpringDamper(5e7, 5e4), 0.6)
+    return FiniteCoupledSystem.from_system(
+        CoupledSystem(pitch_plane_10dof(p), track, K_H, 0.3, SPEED),
         margin_spans=MC.margin_spans,
         elements_per_span=MC.elements_per_span,
         absorber_spans=MC.absorber_spans,
@@ -70,16 +66,9 @@ def test_pulse_does_not_come_back_from_the_ends(system):
     # Monte Carlo track equals that on a 4x longer track (no reflection) to 1e-3 of the peak
     from railvib.validation.time_domain import simulate_time_domain as sim
 
-    long = FiniteCoupledSystem.build(
-        system.vehicle,
-        system.track.rail,
-        system.track.pad,
-        0.6,
-        K_H,
-        0.3,
-        SPEED,
-        margin_spans=120,
-        elements_per_span=2,
+    track = PeriodicTrack(system.track.rail, system.track.pad, 0.6)
+    long = FiniteCoupledSystem.from_system(
+        CoupledSystem(system.vehicle, track, K_H, 0.3, SPEED), margin_spans=120, elements_per_span=2
     )
     dt = 1e-4
     n = 3000

@@ -1,14 +1,16 @@
 """``railvib validate CASE.toml``: symplectic + PEM vs finite track vs time-domain Monte Carlo.
 
-The command is a thin adapter: it loads the case with :func:`railvib.case.load_case`,
-builds the coupled system with :func:`railvib.case.build_system` and hands the core
-objects to :func:`run_validation`, which writes the overlay plots, the agreement
-tables (Markdown) and the datasets (netCDF) into the output folder.
+The command parses its options, loads the case (:func:`railvib.case.load_case`,
+:func:`railvib.case.build_system`), makes one library call,
+:func:`railvib.validation.validate_to_folder`, under a rich progress bar, and
+prints the agreement report. Everything it writes is written by the library.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
+import warnings
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import click
@@ -16,17 +18,50 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from railvib.coupling import CoupledSystem
-from railvib.io import atomic_path
+from railvib.errors import RailvibDeprecationWarning
 from railvib.spectra.base import SpatialSpectrum
 from railvib.validation import (
     ValidationResult,
     ValidationSettings,
+    agreement_markdown,
     monte_carlo_work,
-    plot_overlays,
-    validate_case,
+    validate_to_folder,
 )
 
 __all__ = ["run_validation", "validate"]
+
+DEFAULT_OUTPUT = Path("validation")
+
+
+@contextmanager
+def _progress_bar(console: Console, total: int) -> Iterator[Callable[[int], None]]:
+    """A rich bar over the Monte Carlo's Newmark steps; yields the `progress` callback."""
+    columns = (
+        TextColumn("[progress.description]{task.description}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, console=console, transient=False) as bar:
+        task = bar.add_task("Monte Carlo (Newmark steps)", total=total)
+        yield lambda n: bar.advance(task, n)
+
+
+def _validate_and_print(
+    system: CoupledSystem,
+    spectrum: SpatialSpectrum,
+    outdir: Path,
+    settings: ValidationSettings,
+    seed: int,
+    name: str,
+    console: Console,
+) -> ValidationResult:
+    with _progress_bar(console, monte_carlo_work(settings)) as progress:
+        result = validate_to_folder(
+            system, spectrum, outdir, settings=settings, seed=seed, progress=progress, name=name
+        )
+    console.print(agreement_markdown(result, name))
+    return result
 
 
 def run_validation(
@@ -41,6 +76,10 @@ def run_validation(
     name: str = "case",
 ) -> ValidationResult:
     """Validate one coupled system and write figures, tables and datasets to `outdir`.
+
+    .. deprecated::
+        Use :func:`railvib.validation.validate_to_folder` (the library function; this
+        alias adds the progress bar and prints the report).
 
     Parameters
     ----------
@@ -65,52 +104,30 @@ def run_validation(
     -------
     ValidationResult
     """
-    console = console or Console()
-    settings = ValidationSettings.quick() if quick else ValidationSettings()
-    if realisations is not None:
-        settings = replace(
-            settings, monte_carlo=replace(settings.monte_carlo, realisations=int(realisations))
-        )
-    out = Path(outdir)
-    out.mkdir(parents=True, exist_ok=True)
-    columns = (
-        TextColumn("[progress.description]{task.description}"),
-        BarColumn(),
-        TextColumn("{task.percentage:>3.0f}%"),
-        TimeRemainingColumn(),
+    warnings.warn(
+        "railvib.cli.validate.run_validation is deprecated; call "
+        "railvib.validation.validate_to_folder(system, spectrum, outdir, settings=..., "
+        "seed=..., progress=..., name=...) instead",
+        RailvibDeprecationWarning,
+        stacklevel=2,
     )
-    with Progress(*columns, console=console, transient=False) as bar:
-        task = bar.add_task("Monte Carlo (Newmark steps)", total=monte_carlo_work(settings))
-        result = validate_case(
-            system.vehicle,
-            system.track,
-            system.contact_stiffness,
-            system.leading_wheel_position,
-            system.speed,
-            spectrum,
-            settings=settings,
-            seed=seed,
-            progress=lambda n: bar.advance(task, n),
-        )
-    plot_overlays(result, out, prefix=name)
-    text = (
-        f"# Validation of {name}\n\n## Agreement per response\n\n{result.summary_markdown()}\n\n"
-        f"## Agreement per frequency band\n\n{result.table_markdown()}\n\n"
-        f"Timings (s): {result.timings}\n\nAcceptance (issue 5): "
-        f"{'PASSED' if result.passed else 'FAILED'}\n"
+    settings = (ValidationSettings.quick() if quick else ValidationSettings()).with_realisations(
+        realisations
     )
-    with atomic_path(out / f"{name}_agreement.md") as tmp:
-        tmp.write_text(text, encoding="utf-8")
-    for key in ("frf", "mc", "table"):
-        ds = getattr(result, key).copy()
-        ds.attrs = {k: str(v) for k, v in ds.attrs.items()}
-        for var in ds.data_vars:
-            if ds[var].dtype == bool:
-                ds[var] = ds[var].astype("i1")
-        with atomic_path(out / f"{name}_{key}.nc") as tmp:
-            ds.to_netcdf(tmp, engine="h5netcdf")
-    console.print(text)
-    return result
+    return _validate_and_print(
+        system, spectrum, Path(outdir), settings, seed, name, console or Console()
+    )
+
+
+def _output_folder(output: Path, outdir: Path | None) -> Path:
+    """The folder from ``-o/--output`` or the deprecated ``--outdir``."""
+    if outdir is None:
+        return output
+    source = click.get_current_context().get_parameter_source("output")
+    if source is not click.core.ParameterSource.DEFAULT:
+        raise click.UsageError("give the output folder once, with -o/--output")
+    click.echo("warning: --outdir is deprecated; use -o/--output", err=True)
+    return outdir
 
 
 @click.command("validate")
@@ -118,27 +135,41 @@ def run_validation(
 @click.option("--quick", is_flag=True, help="Short Monte Carlo (runs inside the test suite).")
 @click.option(
     "-o",
-    "--outdir",
+    "--output",
     type=click.Path(file_okay=False, path_type=Path),
-    default=Path("validation"),
+    default=DEFAULT_OUTPUT,
     show_default=True,
     help="Output folder for figures, tables and datasets.",
+)
+@click.option(
+    "--outdir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    hidden=True,
+    help="Deprecated spelling of -o/--output.",
 )
 @click.option("--realisations", type=click.IntRange(min=1), default=None, help="MC realisations.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Base seed of the MC.")
 def validate(
-    case_file: Path, quick: bool, outdir: Path, realisations: int | None, seed: int
+    case_file: Path,
+    quick: bool,
+    output: Path,
+    outdir: Path | None,
+    realisations: int | None,
+    seed: int,
 ) -> None:
     """Run CASE_FILE three ways (PEM, finite track, Monte Carlo) and write the comparison."""
     from railvib.case import build_spectrum, build_system, load_case
 
+    folder = _output_folder(output, outdir)
     case = load_case(case_file)
-    run_validation(
+    settings = ValidationSettings.quick() if quick else ValidationSettings()
+    _validate_and_print(
         build_system(case),
         build_spectrum(case),
-        outdir,
-        quick=quick,
-        realisations=realisations,
-        seed=seed,
-        name=case_file.stem,
+        folder,
+        settings.with_realisations(realisations),
+        seed,
+        case_file.stem,
+        Console(),
     )

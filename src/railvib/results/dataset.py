@@ -74,21 +74,87 @@ def _split_complex(ds: xr.Dataset) -> xr.Dataset:
     return out
 
 
+#: attribute marking a boolean variable stored as int8 (netCDF has no boolean type)
+BOOL_STORED_AS = "dtype_stored_as"
+
+
+def _netcdf_attr(value: Any) -> Any:
+    """`value` if netCDF stores it as an attribute (text, a real number, 1-D numbers), else str."""
+    if isinstance(value, str | bytes):
+        return value
+    if isinstance(value, bool | np.bool_):
+        return str(value)
+    if isinstance(value, int | float | np.integer | np.floating):
+        return value
+    if isinstance(value, list | tuple | np.ndarray):
+        try:
+            kind, ndim = np.asarray(value).dtype.kind, np.ndim(value)
+        except ValueError:  # ragged
+            return str(value)
+        if ndim <= 1 and kind in "iuf":
+            return value
+    return str(value)
+
+
+def _encode(ds: xr.Dataset) -> xr.Dataset:
+    """Complex as ``part``, booleans as int8, attribute values netCDF cannot hold as text."""
+    out = _split_complex(ds)
+    for name, da in out.data_vars.items():
+        if da.dtype == bool:
+            out[name] = da.astype("i1").assign_attrs({BOOL_STORED_AS: "bool"})
+    out.attrs = {k: _netcdf_attr(v) for k, v in out.attrs.items()}
+    for var in out.variables.values():
+        var.attrs = {k: _netcdf_attr(v) for k, v in var.attrs.items()}
+    return out
+
+
 def save_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write `ds` to netCDF-4 atomically; complex variables get a ``part`` (real, imag) dim."""
+    """Write `ds` to netCDF-4 atomically, whatever its types.
+
+    Complex variables get a ``part`` (real, imag) dimension; boolean variables are
+    stored as int8 with the attribute ``dtype_stored_as = "bool"``; attribute values
+    netCDF cannot hold (dicts, sequences of strings, booleans, None, ...) are written
+    as their ``str``. :func:`load_netcdf` restores complex and boolean variables.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset; it is not modified.
+    path : str or pathlib.Path
+        The netCDF file.
+
+    Returns
+    -------
+    pathlib.Path
+        `path`.
+    """
     path = Path(path)
     with atomic_path(path) as tmp:
-        _split_complex(ds).to_netcdf(tmp, engine="h5netcdf")
+        _encode(ds).to_netcdf(tmp, engine="h5netcdf")
     return path
 
 
 def load_netcdf(path: str | Path) -> xr.Dataset:
-    """Read a dataset written by :func:`save_netcdf`, recombining complex variables."""
+    """Read a dataset written by :func:`save_netcdf`, recombining complex and boolean variables.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        Loaded into memory.
+    """
     ds = xr.load_dataset(path, engine="h5netcdf")
     for name, da in list(ds.data_vars.items()):
-        if da.attrs.get("complex_stored_as") == "part":
-            attrs = {k: v for k, v in da.attrs.items() if k != "complex_stored_as"}
-            ds[name] = (da.sel(part="real") + 1j * da.sel(part="imag")).assign_attrs(attrs)
+        attrs = dict(da.attrs)
+        if attrs.pop("complex_stored_as", None) == "part":
+            values = da.sel(part="real").values + 1j * da.sel(part="imag").values
+            ds[name] = (tuple(d for d in da.dims if d != "part"), values, attrs)
+        elif attrs.pop(BOOL_STORED_AS, None) == "bool":
+            ds[name] = (da.dims, da.values.astype(bool), attrs)
     return ds.drop_vars("part", errors="ignore")
 
 

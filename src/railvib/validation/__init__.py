@@ -16,18 +16,22 @@ welch_psd, welch_expectation, confidence_band
     Statistics.
 validate_case, ValidationSettings, ValidationResult, plot_overlays
     The three-way comparison of issue 5.
+validate_to_folder, write_validation, agreement_markdown
+    The comparison's files (overlays, Markdown, netCDF): the library behind
+    ``railvib validate``.
+
+Every reference model takes the :class:`~railvib.coupling.CoupledSystem` of the
+symplectic path (its parameters only); the older parameter-bundle call forms still
+work and emit a :class:`~railvib.errors.RailvibDeprecationWarning`.
 """
 
-from railvib.validation.case import (
-    ValidationResult,
-    ValidationSettings,
-    monte_carlo_work,
-    validate_case,
-)
+from railvib.validation.compare import validate_case
 from railvib.validation.coupled import FiniteCoupledSystem, FiniteFRF, finite_track_frf
 from railvib.validation.finite_track import FiniteTrack, hermite_element_matrices
 from railvib.validation.monte_carlo import MonteCarloResult, MonteCarloSettings, monte_carlo
 from railvib.validation.plots import DEFAULT_PLOT_RESPONSES, plot_overlays
+from railvib.validation.report import agreement_markdown, validate_to_folder, write_validation
+from railvib.validation.result import ValidationResult, ValidationSettings, monte_carlo_work
 from railvib.validation.samples import sample_profile, wheel_irregularities
 from railvib.validation.statistics import (
     WelchEstimate,
@@ -53,6 +57,7 @@ __all__ = [
     "ValidationResult",
     "ValidationSettings",
     "WelchEstimate",
+    "agreement_markdown",
     "confidence_band",
     "finite_track_frf",
     "hermite_element_matrices",
@@ -63,8 +68,10 @@ __all__ = [
     "sample_profile",
     "simulate_time_domain",
     "validate_case",
+    "validate_to_folder",
     "welch_dof",
     "welch_expectation",
     "welch_psd",
     "wheel_irregularities",
+    "write_validation",
 ]

@@ -22,10 +22,12 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
 
+from railvib.coupling import CoupledSystem  # the system description only, not its solver
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
 from railvib.track.periodic import Rail  # the parameter record only, not the solver
+from railvib.validation._legacy import SYSTEM_FROM_BUNDLE, bundle_form, warn_deprecated
 from railvib.validation.finite_track import FiniteTrack
 from railvib.vehicle.assembly import Vehicle
 
@@ -68,6 +70,56 @@ class FiniteCoupledSystem:
         self.track.node_index(self.wheel_positions)  # raises if a wheel is not a node
 
     @classmethod
+    def from_system(
+        cls,
+        system: CoupledSystem,
+        *,
+        margin_spans: int = 60,
+        elements_per_span: int = 8,
+        absorber_spans: int = 0,
+        absorber_damping: float = 0.0,
+    ) -> FiniteCoupledSystem:
+        """The finite-track counterpart of the symplectic path's system description.
+
+        Only the parameters of `system` are read (vehicle; rail, pad, sleeper spacing
+        and pad temperature of ``system.track``; contact stiffness, leading wheel
+        position and speed); nothing of the periodic-track solver is called.
+
+        Parameters
+        ----------
+        system : CoupledSystem
+            Vehicle on the periodic track: k_H in N/m, leading wheel position in m
+            (sleepers at ``n d``), speed in m/s.
+        margin_spans : int
+            Bays of finite track beyond the outermost wheels on each side.
+        elements_per_span : int
+            Hermite elements per bay (8: 1.7e-5 relative receptance error at 1 kHz).
+        absorber_spans : int
+            Bays with graded extra pad damping at each end, inside the margins.
+        absorber_damping : float
+            Extra pad damping at the outermost sleepers, N s/m.
+
+        Returns
+        -------
+        FiniteCoupledSystem
+        """
+        track = system.track
+        return _finite_system(
+            system.vehicle,
+            track.rail,
+            track.pad,
+            track.sleeper_spacing,
+            system.contact_stiffness,
+            system.leading_wheel_position,
+            system.speed,
+            margin_spans=margin_spans,
+            elements_per_span=elements_per_span,
+            absorber_spans=absorber_spans,
+            absorber_damping=absorber_damping,
+            pad_temperature=track.pad_temperature,
+        )
+
+    @classmethod
     def build(
         cls,
         vehicle: Vehicle,
@@ -84,20 +136,30 @@ class FiniteCoupledSystem:
         absorber_damping: float = 0.0,
         pad_temperature: float | None = None,
     ) -> FiniteCoupledSystem:
-        """Build the finite track around the wheels and couple the vehicle to it."""
-        x = leading_wheel_position - vehicle.wheel_offsets
-        track = FiniteTrack.around(
-            x,
+        """Build the finite track around the wheels and couple the vehicle to it.
+
+        .. deprecated::
+            Use :meth:`from_system` with a :class:`~railvib.coupling.CoupledSystem`
+            (the same system description as the symplectic path).
+        """
+        warn_deprecated(
+            "FiniteCoupledSystem.build(vehicle, rail, pad, sleeper_spacing, ...)",
+            f"FiniteCoupledSystem.from_system(system, ...) with {SYSTEM_FROM_BUNDLE}",
+        )
+        return _finite_system(
+            vehicle,
             rail,
             pad,
             sleeper_spacing,
+            contact_stiffness,
+            leading_wheel_position,
+            speed,
             margin_spans=margin_spans,
             elements_per_span=elements_per_span,
             absorber_spans=absorber_spans,
             absorber_damping=absorber_damping,
             pad_temperature=pad_temperature,
         )
-        return cls(vehicle, track, contact_stiffness, leading_wheel_position, speed)
 
     @property
     def wheel_positions(self) -> NDArray[np.float64]:
@@ -202,7 +264,38 @@ class FiniteCoupledSystem:
         return FRF(f=f, vehicle=out_v, rail=out_r, contact_force=out_p, dofs=v.dofs)
 
 
-def finite_track_frf(
+def _finite_system(
+    vehicle: Vehicle,
+    rail: Rail,
+    pad: PadModel,
+    sleeper_spacing: float,
+    contact_stiffness: float,
+    leading_wheel_position: float,
+    speed: float,
+    *,
+    margin_spans: int,
+    elements_per_span: int,
+    absorber_spans: int,
+    absorber_damping: float,
+    pad_temperature: float | None,
+) -> FiniteCoupledSystem:
+    """The finite track around the wheels with the vehicle coupled to it (no warning)."""
+    x = leading_wheel_position - vehicle.wheel_offsets
+    track = FiniteTrack.around(
+        x,
+        rail,
+        pad,
+        sleeper_spacing,
+        margin_spans=margin_spans,
+        elements_per_span=elements_per_span,
+        absorber_spans=absorber_spans,
+        absorber_damping=absorber_damping,
+        pad_temperature=pad_temperature,
+    )
+    return FiniteCoupledSystem(vehicle, track, contact_stiffness, leading_wheel_position, speed)
+
+
+def _finite_track_frf_bundle(
     vehicle: Vehicle,
     rail: Rail,
     pad: PadModel,
@@ -215,39 +308,9 @@ def finite_track_frf(
     margin_spans: int = 60,
     elements_per_span: int = 8,
     pad_temperature: float | None = None,
-) -> FiniteFRF:
-    """FRFs of the vehicle on a long finite track (independent of the symplectic solver).
-
-    Parameters
-    ----------
-    vehicle : Vehicle
-        Pitch-plane vehicle.
-    rail : Rail
-        Rail beam.
-    pad : PadModel
-        Railpad (complex stiffness in N/m).
-    sleeper_spacing : float
-        d in m.
-    contact_stiffness : float
-        k_H in N/m.
-    leading_wheel_position : float
-        Leading wheel position along the rail in m, sleepers at ``n d``.
-    speed : float
-        m/s.
-    f : array_like
-        Frequencies in Hz.
-    margin_spans : int
-        Bays of track beyond the outermost wheels on each side.
-    elements_per_span : int
-        Hermite elements per bay (8: 1.7e-5 relative receptance error at 1 kHz).
-    pad_temperature : float, optional
-        degC, passed to the pad model.
-
-    Returns
-    -------
-    FiniteFRF
-    """
-    system = FiniteCoupledSystem.build(
+) -> FRF:
+    """The deprecated form ``finite_track_frf(vehicle, rail, pad, d, k_H, x0, v, f, ...)``."""
+    system = _finite_system(
         vehicle,
         rail,
         pad,
@@ -257,6 +320,51 @@ def finite_track_frf(
         speed,
         margin_spans=margin_spans,
         elements_per_span=elements_per_span,
+        absorber_spans=0,
+        absorber_damping=0.0,
         pad_temperature=pad_temperature,
     )
     return system.frf(f)
+
+
+@bundle_form(
+    _finite_track_frf_bundle,
+    "finite_track_frf(vehicle, rail, pad, sleeper_spacing, contact_stiffness, "
+    "leading_wheel_position, speed, f, ...)",
+    f"finite_track_frf(system, f, ...) with {SYSTEM_FROM_BUNDLE}",
+)
+def finite_track_frf(
+    system: CoupledSystem,
+    f: ArrayLike,
+    *,
+    margin_spans: int = 60,
+    elements_per_span: int = 8,
+) -> FRF:
+    """FRFs of the vehicle on a long finite track (independent of the symplectic solver).
+
+    The deprecated form ``finite_track_frf(vehicle, rail, pad, sleeper_spacing,
+    contact_stiffness, leading_wheel_position, speed, f, *, margin_spans,
+    elements_per_span, pad_temperature)`` still works and warns.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle on the periodic track (its parameters only; see
+        :meth:`FiniteCoupledSystem.from_system`).
+    f : array_like
+        Frequencies in Hz.
+    margin_spans : int
+        Bays of track beyond the outermost wheels on each side.
+    elements_per_span : int
+        Hermite elements per bay (8: 1.7e-5 relative receptance error at 1 kHz).
+
+    Returns
+    -------
+    FRF
+        Per metre of irregularity: vehicle DOFs (m/m, rad/m for pitch), rail under each
+        wheel (m/m) and contact forces (N/m).
+    """
+    finite = FiniteCoupledSystem.from_system(
+        system, margin_spans=margin_spans, elements_per_span=elements_per_span
+    )
+    return finite.frf(f)

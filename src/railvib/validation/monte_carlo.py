@@ -7,11 +7,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from railvib.coupling import CoupledSystem  # the system description only, not its solver
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.spectra.base import SpatialSpectrum
 from railvib.track.periodic import Rail  # the parameter record only, not the solver
-from railvib.validation.coupled import FiniteCoupledSystem
+from railvib.validation._legacy import SYSTEM_FROM_BUNDLE, bundle_form
+from railvib.validation.coupled import FiniteCoupledSystem, _finite_system
 from railvib.validation.samples import wheel_irregularities
 from railvib.validation.statistics import WelchEstimate, welch_psd
 from railvib.validation.time_domain import output_dofs, simulate_time_domain
@@ -113,7 +115,7 @@ class MonteCarloResult:
     system: FiniteCoupledSystem
 
 
-def monte_carlo(
+def _monte_carlo_bundle(
     vehicle: Vehicle,
     rail: Rail,
     pad: PadModel,
@@ -127,24 +129,52 @@ def monte_carlo(
     seed: int = 0,
     progress: Callable[[int], None] | None = None,
 ) -> MonteCarloResult:
+    """The deprecated form ``monte_carlo(vehicle, rail, pad, d, k_H, x0, v, spectrum, ...)``."""
+    s = settings if settings is not None else MonteCarloSettings()
+    system = _finite_system(
+        vehicle,
+        rail,
+        pad,
+        sleeper_spacing,
+        contact_stiffness,
+        leading_wheel_position,
+        speed,
+        margin_spans=s.margin_spans,
+        elements_per_span=s.elements_per_span,
+        absorber_spans=s.absorber_spans,
+        absorber_damping=s.absorber_damping,
+        pad_temperature=None,
+    )
+    return _run_monte_carlo(system, spectrum, s, seed, progress)
+
+
+@bundle_form(
+    _monte_carlo_bundle,
+    "monte_carlo(vehicle, rail, pad, sleeper_spacing, contact_stiffness, "
+    "leading_wheel_position, speed, spectrum, ...)",
+    f"monte_carlo(system, spectrum, ...) with {SYSTEM_FROM_BUNDLE}",
+)
+def monte_carlo(
+    system: CoupledSystem,
+    spectrum: SpatialSpectrum,
+    *,
+    settings: MonteCarloSettings | None = None,
+    seed: int = 0,
+    progress: Callable[[int], None] | None = None,
+) -> MonteCarloResult:
     """Acceleration PSDs of the vehicle and rail by time-domain Monte Carlo.
+
+    The deprecated form ``monte_carlo(vehicle, rail, pad, sleeper_spacing,
+    contact_stiffness, leading_wheel_position, speed, spectrum, ...)`` still works
+    and warns.
 
     Parameters
     ----------
-    vehicle : Vehicle
-        Pitch-plane vehicle.
-    rail : Rail
-        Rail beam (no loss factor).
-    pad : SpringDamper
-        Viscous railpad, N/m and N s/m.
-    sleeper_spacing : float
-        d in m.
-    contact_stiffness : float
-        k_H in N/m.
-    leading_wheel_position : float
-        Leading wheel position along the rail in m, sleepers at ``n d``.
-    speed : float
-        m/s.
+    system : CoupledSystem
+        Vehicle on the periodic track; its parameters build the finite track
+        (:meth:`FiniteCoupledSystem.from_system`). The rail needs no loss factor and
+        the pad must be a :class:`~railvib.pads.SpringDamper` (N/m, N s/m).
+        k_H in N/m, leading wheel position in m, speed in m/s.
     spectrum : SpatialSpectrum
         One-sided irregularity spectrum, m^2/(rad/m).
     settings : MonteCarloSettings, optional
@@ -157,21 +187,27 @@ def monte_carlo(
     Returns
     -------
     MonteCarloResult
+        PSDs in (m/s^2)^2/Hz, (rad/s^2)^2/Hz for pitch.
     """
     s = settings if settings is not None else MonteCarloSettings()
-    system = FiniteCoupledSystem.build(
-        vehicle,
-        rail,
-        pad,
-        sleeper_spacing,
-        contact_stiffness,
-        leading_wheel_position,
-        speed,
+    finite = FiniteCoupledSystem.from_system(
+        system,
         margin_spans=s.margin_spans,
         elements_per_span=s.elements_per_span,
         absorber_spans=s.absorber_spans,
         absorber_damping=s.absorber_damping,
     )
+    return _run_monte_carlo(finite, spectrum, s, seed, progress)
+
+
+def _run_monte_carlo(
+    system: FiniteCoupledSystem,
+    spectrum: SpatialSpectrum,
+    s: MonteCarloSettings,
+    seed: int,
+    progress: Callable[[int], None] | None,
+) -> MonteCarloResult:
+    """Integrate the realisations in batches and pool their Welch PSDs."""
     dofs, labels = output_dofs(system)
     duration = s.discard_seconds + s.record_seconds
     fs = 1.0 / (s.dt * s.decimation)
@@ -181,8 +217,8 @@ def monte_carlo(
         idx = np.arange(start, min(start + s.batch, s.realisations))
         r = wheel_irregularities(
             spectrum,
-            speed,
-            vehicle.wheel_offsets,
+            system.speed,
+            system.vehicle.wheel_offsets,
             duration,
             s.dt,
             seed,

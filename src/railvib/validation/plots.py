@@ -8,7 +8,7 @@ from matplotlib.figure import Figure
 
 from railvib.io import save_figure
 from railvib.response import rail_label
-from railvib.validation.case import ValidationResult
+from railvib.validation.result import ValidationResult
 
 __all__ = ["DEFAULT_PLOT_RESPONSES", "plot_overlays"]
 

@@ -1,0 +1,127 @@
+"""The files of a validation: overlay plots, agreement tables (Markdown) and datasets (netCDF).
+
+:func:`validate_to_folder` is the library call behind ``railvib validate``: it runs
+:func:`~railvib.validation.validate_case` and :func:`write_validation` writes, into
+one folder and under one name prefix,
+
+* ``<name>_carbody_bounce.png``, ``<name>_bogie1_bounce.png``,
+  ``<name>_wheelset2_bounce.png``, ``<name>_rail_wheel1.png`` (overlays);
+* ``<name>_agreement.md`` (per-response and per-band agreement, timings, PASSED/FAILED);
+* ``<name>_frf.nc``, ``<name>_mc.nc``, ``<name>_table.nc`` (through
+  :func:`railvib.results.save_netcdf`; read them back with
+  :func:`railvib.results.load_netcdf`).
+
+Every file is written atomically.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from railvib.coupling import CoupledSystem
+from railvib.io import write_text
+from railvib.results.dataset import save_netcdf
+from railvib.spectra.base import SpatialSpectrum
+from railvib.validation.compare import validate_case
+from railvib.validation.plots import plot_overlays
+from railvib.validation.result import ValidationResult, ValidationSettings
+
+__all__ = ["DATASETS", "agreement_markdown", "validate_to_folder", "write_validation"]
+
+#: the datasets of a :class:`ValidationResult` written as ``<name>_<key>.nc``
+DATASETS = ("frf", "mc", "table")
+
+
+def agreement_markdown(result: ValidationResult, name: str) -> str:
+    """The Markdown report of `result`: agreement tables, timings (s) and the verdict.
+
+    Parameters
+    ----------
+    result : ValidationResult
+        Output of :func:`~railvib.validation.validate_case`.
+    name : str
+        Name of the case, for the title.
+
+    Returns
+    -------
+    str
+        The text of ``<name>_agreement.md``.
+    """
+    return (
+        f"# Validation of {name}\n\n## Agreement per response\n\n{result.summary_markdown()}\n\n"
+        f"## Agreement per frequency band\n\n{result.table_markdown()}\n\n"
+        f"Timings (s): {result.timings}\n\nAcceptance (issue 5): "
+        f"{'PASSED' if result.passed else 'FAILED'}\n"
+    )
+
+
+def write_validation(
+    result: ValidationResult, outdir: str | Path, name: str = "case"
+) -> list[Path]:
+    """Write the overlays, the Markdown report and the three datasets of `result`.
+
+    Parameters
+    ----------
+    result : ValidationResult
+        Output of :func:`~railvib.validation.validate_case`.
+    outdir : str or pathlib.Path
+        Output folder (created if missing).
+    name : str
+        Prefix of the file names.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
+    out = Path(outdir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = plot_overlays(result, out, prefix=name)
+    written.append(write_text(out / f"{name}_agreement.md", agreement_markdown(result, name)))
+    for key in DATASETS:
+        written.append(save_netcdf(getattr(result, key), out / f"{name}_{key}.nc"))
+    return written
+
+
+def validate_to_folder(
+    system: CoupledSystem,
+    spectrum: SpatialSpectrum,
+    outdir: str | Path,
+    *,
+    settings: ValidationSettings | None = None,
+    seed: int = 0,
+    progress: Callable[[int], None] | None = None,
+    name: str = "case",
+) -> ValidationResult:
+    """Validate one coupled system three ways and write the comparison into `outdir`.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle on the periodic track: k_H in N/m, leading wheel position in m,
+        speed in m/s.
+    spectrum : SpatialSpectrum
+        One-sided irregularity spectrum, m^2/(rad/m).
+    outdir : str or pathlib.Path
+        Output folder (created first, so an unwritable path fails before the run).
+    settings : ValidationSettings, optional
+        Defaults to ``ValidationSettings()``; ``ValidationSettings.quick()`` runs in
+        about 20 s.
+    seed : int
+        Base seed of the Monte Carlo.
+    progress : callable, optional
+        Called with Newmark steps done (times realisations); the total is
+        :func:`~railvib.validation.monte_carlo_work`.
+    name : str
+        Prefix of the file names (see :func:`write_validation`).
+
+    Returns
+    -------
+    ValidationResult
+        PSDs in (m/s^2)^2/Hz ((rad/s^2)^2/Hz for pitch), timings in s.
+    """
+    Path(outdir).mkdir(parents=True, exist_ok=True)
+    result = validate_case(system, spectrum, settings=settings, seed=seed, progress=progress)
+    write_validation(result, outdir, name)
+    return result
