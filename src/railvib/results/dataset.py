@@ -151,7 +151,9 @@ def load_netcdf(path: str | Path) -> xr.Dataset:
     for name, da in list(ds.data_vars.items()):
         attrs = dict(da.attrs)
         if attrs.pop("complex_stored_as", None) == "part":
-            values = da.sel(part="real").values + 1j * da.sel(part="imag").values
+            values = np.empty(da.sel(part="real").shape, dtype=complex)
+            values.real = da.sel(part="real").values  # set, not re + 1j*im: bit exact for
+            values.imag = da.sel(part="imag").values  # inf, nan and -0.0 imaginary parts
             ds[name] = (tuple(d for d in da.dims if d != "part"), values, attrs)
         elif attrs.pop(BOOL_STORED_AS, None) == "bool":
             ds[name] = (da.dims, da.values.astype(bool), attrs)
