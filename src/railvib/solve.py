@@ -2,17 +2,27 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import xarray as xr
+from numpy.typing import NDArray
 
 from railvib.case import Case, build_grid, build_spectrum, build_system, load_case
 from railvib.coupling import CoupledSystem
+from railvib.errors import RailvibDeprecationWarning
 from railvib.grid import FrequencyGrid
 from railvib.io import railvib_version, write_text
-from railvib.outputs import DEFAULT_OUTPUTS, LOSS_OF_CONTACT_NOTE, derive, linearity_note
+from railvib.outputs import (
+    DEFAULT_OUTPUTS,
+    LOSS_OF_CONTACT_NOTE,
+    ContactCheck,
+    derive,
+    linearity_note,
+)
 from railvib.results.dataset import build_dataset, save_csv, save_netcdf
 from railvib.results.stats import summary
 from railvib.spectra.base import SpatialSpectrum
@@ -21,6 +31,7 @@ __all__ = [
     "LOSS_OF_CONTACT_NOTE",
     "RunOutput",
     "case_toml",
+    "contact_check",
     "railvib_version",
     "run",
     "run_system",
@@ -84,6 +95,54 @@ def run_system(
         **(attrs or {}),
     }
     return derive(build_dataset(frf, s_r, attrs=meta, extra=extra), DEFAULT_OUTPUTS)
+
+
+def contact_check(
+    system: CoupledSystem,
+    f: NDArray[np.float64],
+    force_frf: NDArray[np.complex128],
+    irregularity_psd: NDArray[np.float64],
+) -> dict[str, xr.DataArray]:
+    """Deprecated: the contact check is the derived output :class:`railvib.outputs.ContactCheck`.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The system (its static wheel loads, N).
+    f : numpy.ndarray
+        Frequencies, Hz.
+    force_frf : numpy.ndarray
+        Contact force per metre of irregularity, ``(n_freq, n_wheel)``, N/m.
+    irregularity_psd : numpy.ndarray
+        One-sided irregularity PSD, m^2/Hz, ``(n_freq,)``.
+
+    Returns
+    -------
+    dict of xarray.DataArray
+        ``contact_force_rms`` (N), ``static_contact_load`` (N) and
+        ``loss_of_contact_probability`` (-), over ``wheel``.
+    """
+    warnings.warn(
+        "railvib.solve.contact_check is deprecated; every run carries the check "
+        "(railvib.outputs.ContactCheck().compute(ds))",
+        RailvibDeprecationWarning,
+        stacklevel=2,
+    )
+    psd = np.abs(force_frf) ** 2 * irregularity_psd[:, None]
+    ds = xr.Dataset(
+        {
+            "psd_force": (("frequency", "wheel"), psd),
+            "static_contact_load": (("wheel",), system.vehicle.static_wheel_loads()),
+        },
+        coords={"frequency": f},
+    )
+    out = ContactCheck().compute(ds)
+    load = ds["static_contact_load"].assign_attrs(units="N", long_name="static contact load")
+    return {
+        "contact_force_rms": out["contact_force_rms"],
+        "static_contact_load": load,
+        "loss_of_contact_probability": out["loss_of_contact_probability"],
+    }
 
 
 def run(case: Case | str | Path) -> xr.Dataset:

@@ -148,3 +148,19 @@ def test_contact_linearity_check():
         }
     )
     assert float(railvib.run(rough).loss_of_contact_probability.max()) > 0.01
+
+
+def test_deprecated_contact_check_gives_the_run_values():
+    import railvib
+    from railvib.errors import RailvibDeprecationWarning
+    from railvib.solve import contact_check
+
+    case = railvib.load_preset_case()
+    ds = railvib.run(case)
+    system = railvib.build_system(case)
+    with pytest.warns(RailvibDeprecationWarning, match="ContactCheck"):
+        old = contact_check(
+            system, ds.frequency.values, ds.frf_force.values, ds.irregularity_psd.values
+        )
+    for name in ("contact_force_rms", "static_contact_load", "loss_of_contact_probability"):
+        np.testing.assert_array_equal(old[name].values, ds[name].values)  # the same arithmetic
