@@ -7,7 +7,6 @@ import pytest
 import railvib
 from railvib.case import case_from_dict, load_case
 from railvib.case.template import render_template
-from railvib.cli.main import main
 from railvib.errors import CaseError
 
 
@@ -86,39 +85,6 @@ def test_bad_toml_and_missing_file(tmp_path):
         load_case(bad)
     with pytest.raises(CaseError, match="readable TOML file"):
         load_case(tmp_path / "nope.toml")
-
-
-def test_cli_prints_one_line_and_writes_nothing(tmp_path, capsys):
-    bad = tmp_path / "bad.toml"
-    bad.write_text('preset = "wang2017_metro"\n[vehicle]\ncarbody_mass = -1.0\n')
-    out = tmp_path / "out"
-    assert main(["run", str(bad), "-o", str(out)]) == 2
-    err = capsys.readouterr().err.strip()
-    assert err == "error: vehicle.carbody_mass = -1.0: must be > 0.0 (kg)"
-    assert not out.exists()
-
-
-def test_cli_run_writes_dataset_summary_and_plots(tmp_path):
-    case = tmp_path / "c.toml"
-    case.write_text(
-        'preset = "wang2017_metro"\n[frequency]\nf_min = 1.0\nf_max = 200.0\nstep = 1.0\n'
-    )
-    out = tmp_path / "out"
-    assert main(["run", str(case), "-o", str(out)]) == 0
-    names = {p.name for p in out.iterdir()}
-    assert {
-        "results.nc",
-        "psd_acceleration.csv",
-        "summary.csv",
-        "summary.md",
-        "psd_wheelset.png",
-        "psd_rail.png",
-    } <= names
-    assert not any(n.endswith(".part") for n in names)
-    ds = railvib.load_netcdf(out / "results.nc")
-    assert ds.frf_displacement.dtype.kind == "c"
-    assert ds.sizes["frequency"] == 200
-    assert "case_toml" in ds.attrs
 
 
 def test_rail_pair_mode_doubles_beam_pads_and_contact():

@@ -2,12 +2,12 @@
 
 import numpy as np
 import pytest
-from conftest import PAPER_VEHICLE_PARAMS as P  # noqa: I001
 from scipy.linalg import eigh
 
 from railvib.errors import CaseError
 from railvib.vehicle import RigidBody, Suspension, Vehicle, Wheel
 from railvib.vehicle.parts import Attachment
+from tests.conftest import PAPER_VEHICLE_PARAMS as P
 
 
 def _two_dof_frequencies(m1, k11, k12, m2, k22):

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-from sweep_cases import small_sweep
 
 import railvib
 from railvib.case import build_system
@@ -10,6 +9,7 @@ from railvib.case.load import merge_case_dicts
 from railvib.results.stats import summary
 from railvib.sweep import SweepLayout, compute_chunk, frf_many_speeds, sweep_from_dict
 from railvib.sweep.spec import nested_override
+from tests.unit.sweep.sweep_cases import small_sweep
 
 # Reason for 1e-12: the batched solve (multi right-hand side, matmul instead of einsum)
 # reorders floating-point operations only; on a well-conditioned 10x10 system that

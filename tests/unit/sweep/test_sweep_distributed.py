@@ -2,13 +2,14 @@
 
 import pytest
 import xarray as xr
-from sweep_cases import small_sweep
 
 from railvib.sweep import run_sweep, sweep_from_dict
+from tests.unit.sweep.sweep_cases import small_sweep
 
 distributed = pytest.importorskip("distributed")
 
 
+@pytest.mark.slow  # starts a Dask LocalCluster: ~8 s
 def test_local_cluster_equals_serial_bit_for_bit(tmp_path):
     spec = sweep_from_dict(small_sweep())
     serial = run_sweep(spec, tmp_path / "serial", workers=1, progress=False)

@@ -3,10 +3,7 @@
 from pathlib import Path
 
 import pytest
-import tomli_w
-from sweep_cases import small_sweep
 
-from railvib.cli.main import main
 from railvib.errors import CaseError
 from railvib.plot.sweep import save_sweep_plots
 from railvib.sweep import (
@@ -18,6 +15,7 @@ from railvib.sweep import (
     save_sweep_extras,
     sweep_from_dict,
 )
+from tests.unit.sweep.sweep_cases import small_sweep
 
 
 @pytest.fixture(scope="module")
@@ -79,23 +77,3 @@ def test_save_sweep_plots_takes_the_axes(done, tmp_path):
     with pytest.raises(CaseError) as err:
         save_sweep_plots(ds, tmp_path, ["peak"], y="speed")
     assert err.value.field == "y"
-
-
-def test_plot_commands_default_to_the_sweep_folder(tmp_path, capsys):
-    f = tmp_path / "s.toml"
-    f.write_text(tomli_w.dumps(small_sweep()))
-    out = tmp_path / "out"
-    assert main(["sweep", str(f), "-o", str(out), "-j", "1", "--no-progress"]) == 0
-    capsys.readouterr()
-    assert main(["sweep", "plot", str(out)]) == 0
-    lines = capsys.readouterr().out.splitlines()
-    assert f"written {out / 'plots' / 'sweep_peak_wheelset1_bounce.png'}" in lines
-    assert len(lines) == 6
-    # the top-level alias, on the store itself, with the axes swapped
-    args = ["plot", str(out / "sweep.zarr"), "-v", "peak", "-r", "carbody.bounce"]
-    assert main([*args, "--x", "track.pad_temperature_c", "--y", "speed_kmh"]) == 0
-    assert capsys.readouterr().out.splitlines() == [
-        f"written {out / 'plots' / 'sweep_peak_carbody_bounce.png'}"
-    ]
-    assert main(["plot", str(out), "--x", "temperature"]) == 2
-    assert "x = 'temperature'" in capsys.readouterr().err

@@ -4,10 +4,10 @@ import copy
 
 import numpy as np
 import pytest
-from sweep_cases import BASE_CASE, small_sweep
 
 from railvib.errors import CaseError
 from railvib.sweep import SweepLayout, load_sweep, sweep_from_dict
+from tests.unit.sweep.sweep_cases import BASE_CASE, small_sweep
 
 
 def test_ranges_values_and_log_ranges_resolve():

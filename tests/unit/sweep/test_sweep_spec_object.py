@@ -7,12 +7,12 @@ import json
 import pickle
 
 import pytest
-from sweep_cases import BASE_CASE, small_sweep
 
 import railvib
 import railvib.sweep
 from railvib.errors import CaseError
 from railvib.sweep import ChunkStore, SweepAxis, SweepLayout, SweepSpec, sweep_from_dict
+from tests.unit.sweep.sweep_cases import BASE_CASE, small_sweep
 
 PADS = [
     {"model": "spring_damper", "stiffness_n_per_m": 1.2e8, "damping_ns_per_m": 6e4},

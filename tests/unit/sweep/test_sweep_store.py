@@ -6,7 +6,6 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
-from sweep_cases import small_sweep
 
 from railvib.sweep import (
     ChunkStore,
@@ -18,6 +17,7 @@ from railvib.sweep import (
     sweep_from_dict,
 )
 from railvib.sweep import runner as runner_mod
+from tests.unit.sweep.sweep_cases import small_sweep
 
 
 @pytest.fixture
@@ -110,6 +110,7 @@ def test_foreign_chunk_file_is_refused(spec, tmp_path):
         store.missing()
 
 
+@pytest.mark.slow  # starts worker processes: ~5 s
 def test_local_processes_equal_serial_bit_for_bit(spec, tmp_path):
     serial = run_sweep(spec, tmp_path / "serial", workers=1, progress=False)
     parallel = run_sweep(spec, tmp_path / "par", workers=2, progress=False)

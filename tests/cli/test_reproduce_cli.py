@@ -9,6 +9,8 @@ from click.testing import CliRunner
 from railvib.cli.main import cli
 from railvib.reproduce import FIGURES, PAPER_NUMBERS
 
+pytestmark = pytest.mark.slow  # runs the whole study once: ~6 s
+
 
 @pytest.fixture(scope="module")
 def outdir(tmp_path_factory):

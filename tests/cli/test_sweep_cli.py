@@ -2,11 +2,11 @@
 
 import tomli_w
 import xarray as xr
-from sweep_cases import small_sweep
 
 from railvib.cli.main import main
 from railvib.plot.sweep import plot_sweep
 from railvib.sweep import load_sweep_dataset
+from tests.unit.sweep.sweep_cases import small_sweep
 
 
 def _write(tmp_path, d, name="s.toml"):
@@ -114,3 +114,23 @@ def test_plot_sweep_lines_and_heatmap(tmp_path):
     assert "track.pad_temperature_c=30.0" in ax.get_title()
     ax = plot_sweep(ds, "dominant_frequency", "wheelset1.bounce")
     assert len(ax.collections) == 1  # a heat map over the two axes
+
+
+def test_plot_commands_default_to_the_sweep_folder(tmp_path, capsys):
+    f = tmp_path / "s.toml"
+    f.write_text(tomli_w.dumps(small_sweep()))
+    out = tmp_path / "out"
+    assert main(["sweep", str(f), "-o", str(out), "-j", "1", "--no-progress"]) == 0
+    capsys.readouterr()
+    assert main(["sweep", "plot", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert f"written {out / 'plots' / 'sweep_peak_wheelset1_bounce.png'}" in lines
+    assert len(lines) == 6
+    # the top-level alias, on the store itself, with the axes swapped
+    args = ["plot", str(out / "sweep.zarr"), "-v", "peak", "-r", "carbody.bounce"]
+    assert main([*args, "--x", "track.pad_temperature_c", "--y", "speed_kmh"]) == 0
+    assert capsys.readouterr().out.splitlines() == [
+        f"written {out / 'plots' / 'sweep_peak_carbody_bounce.png'}"
+    ]
+    assert main(["plot", str(out), "--x", "temperature"]) == 2
+    assert "x = 'temperature'" in capsys.readouterr().err

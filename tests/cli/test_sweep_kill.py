@@ -6,11 +6,12 @@ import subprocess
 import sys
 import time
 
+import pytest
 import tomli_w
 import xarray as xr
-from sweep_cases import BASE_CASE
 
 from railvib.sweep import ChunkStore, load_sweep, load_sweep_dataset, run_sweep
+from tests.unit.sweep.sweep_cases import BASE_CASE
 
 SWEEP = {
     "title": "kill test",
@@ -38,6 +39,7 @@ def _cli(sweep_file, out):
     ]
 
 
+@pytest.mark.slow  # kills a real sweep process: ~12 s
 def test_sigkill_midway_then_resume_equals_uninterrupted(tmp_path):
     sweep_file = tmp_path / "kill.toml"
     sweep_file.write_text(tomli_w.dumps(SWEEP))
