@@ -19,9 +19,6 @@ import numpy as np
 import tomli_w
 from numpy.typing import NDArray
 
-import railvib.pads.simple
-import railvib.pads.tabulated
-import railvib.pads.viscoelastic  # noqa: F401  (the built-in models register on import)
 from railvib.errors import CaseError
 from railvib.pads.base import PADS, PadModel
 from railvib.pads.tts import TemperatureShifted, tts_to_dict

@@ -5,13 +5,6 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-import railvib.spectra.chinese
-import railvib.spectra.combined
-import railvib.spectra.fra
-import railvib.spectra.german
-import railvib.spectra.sato
-import railvib.spectra.shitai
-import railvib.spectra.tabulated  # noqa: F401  (the built-in spectra register on import)
 from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["PAPER_SPECTRUM_DICT", "spectrum_from_dict"]
