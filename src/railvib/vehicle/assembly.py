@@ -190,6 +190,16 @@ class Vehicle:
 
         Solves the static equilibrium of the sprung bodies with the wheel points
         fixed; the contact reactions then balance the weight of everything.
+
+        Parameters
+        ----------
+        gravity : float
+            Gravitational acceleration in m/s^2 (default 9.81).
+
+        Returns
+        -------
+        numpy.ndarray
+            Contact load at each wheel in N, wheels front to back, shape ``(n_wheel,)``.
         """
         b = self.wheel_matrix
         weight = np.zeros(len(self.dofs))
