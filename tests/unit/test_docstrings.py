@@ -93,8 +93,7 @@ def test_public_function_documents_its_parameters_with_units(qualname, func):
             and not integers
         ):
             assert UNIT.search(documented[p.name]) or "bool" in annotation, (
-                f"{qualname}: numeric parameter {p.name!r} gives no unit "
-                f"({documented[p.name]!r})"
+                f"{qualname}: numeric parameter {p.name!r} gives no unit ({documented[p.name]!r})"
             )
 
 
