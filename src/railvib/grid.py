@@ -46,7 +46,17 @@ class FrequencyGrid:
 
     @classmethod
     def from_array(cls, f: ArrayLike) -> FrequencyGrid:
-        """Grid from explicit frequencies in Hz."""
+        """Grid from explicit frequencies in Hz.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, 1-D, strictly increasing, all > 0 (copied).
+
+        Returns
+        -------
+        FrequencyGrid
+        """
         return cls(np.asarray(f, dtype=float))
 
     @classmethod
