@@ -47,7 +47,7 @@ def psd(results: Results, case: str, response: str) -> xr.DataArray:
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     case : str
         Key of the case in `results`.
@@ -68,7 +68,7 @@ def peak(results: Results, case: str, response: str, band: Band) -> float:
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     case : str
         Key of the case in `results`.
@@ -90,7 +90,7 @@ def peak_frequency(results: Results, case: str, response: str, band: Band) -> fl
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     case : str
         Key of the case in `results`.
@@ -114,7 +114,7 @@ def peak_ratio(
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     cases : sequence of str
         The two case keys compared, ``(cases[0], cases[1])``.
@@ -139,7 +139,7 @@ def peak_difference(results: Results, cases: Sequence[str], response: str, band:
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     cases : sequence of str
         The two case keys compared, ``(cases[0], cases[1])``.
@@ -162,7 +162,7 @@ def frequency_shift(results: Results, cases: Sequence[str], response: str, band:
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     cases : sequence of str
         The two case keys compared, ``(cases[0], cases[1])``.
@@ -189,7 +189,7 @@ def rms_ratio(results: Results, cases: Sequence[str], response: str, band: Band)
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     cases : sequence of str
         The two case keys compared, ``(cases[0], cases[1])``.
@@ -212,7 +212,7 @@ def rms_spread(results: Results, cases: Sequence[str], response: str, band: Band
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     cases : sequence of str
         Keys of the cases compared.
@@ -238,7 +238,7 @@ def crossover(results: Results, cases: Sequence[str], response: str, band: Band)
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     cases : sequence of str
         The two case keys compared, ``(cases[0], cases[1])``.
@@ -297,7 +297,7 @@ def comb_spacing(
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     case : str
         Key of the case in `results`.
@@ -336,7 +336,7 @@ def envelope_peak_frequency(results: Results, case: str, response: str, band: Ba
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     case : str
         Key of the case in `results`.
@@ -363,7 +363,7 @@ def headline_ratio(results: Results, reference: str, cases: Sequence[str], respo
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     reference : str
         Key of the reference case.
@@ -388,7 +388,7 @@ def headline_shift(results: Results, reference: str, cases: Sequence[str], respo
 
     Parameters
     ----------
-    results : Mapping of str to xarray.Dataset
+    results : mapping of str to xarray.Dataset
         Study results: case key -> result dataset of :func:`railvib.run`.
     reference : str
         Key of the reference case.
