@@ -39,7 +39,23 @@ def hertz_stiffness(contact_constant: float, static_load: float) -> float:
 
 
 def hertz_constant_conical(wheel_radius: float) -> float:
-    """Contact constant of a conical tread, ``G = 4.57e-8 R^-0.149`` in m/N^(2/3) (R in m)."""
+    """Contact constant of a conical tread, ``G = 4.57e-8 R^-0.149`` in m/N^(2/3) (R in m).
+
+    Parameters
+    ----------
+    wheel_radius : float
+        Wheel rolling radius ``R`` in m (> 0).
+
+    Returns
+    -------
+    float
+        G in m/N^(2/3).
+
+    Raises
+    ------
+    CaseError
+        If `wheel_radius` is not a finite number > 0.
+    """
     if not (np.isfinite(wheel_radius) and wheel_radius > 0):
         raise CaseError("contact.wheel_radius", wheel_radius, "must be > 0 (m)")
     return 4.57e-8 * wheel_radius**-0.149

@@ -46,12 +46,42 @@ class FrequencyGrid:
 
     @classmethod
     def from_array(cls, f: ArrayLike) -> FrequencyGrid:
-        """Grid from explicit frequencies in Hz."""
+        """Grid from explicit frequencies in Hz.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, 1-D, strictly increasing, all > 0 (copied).
+
+        Returns
+        -------
+        FrequencyGrid
+        """
         return cls(np.asarray(f, dtype=float))
 
     @classmethod
     def linear(cls, f_min: float, f_max: float, step: float) -> FrequencyGrid:
-        """Evenly spaced grid from `f_min` to `f_max` (inclusive where it lands) in Hz."""
+        """Evenly spaced grid from `f_min` to `f_max` (inclusive where it lands) in Hz.
+
+        Parameters
+        ----------
+        f_min : float
+            First frequency in Hz (> 0).
+        f_max : float
+            Upper end of the band in Hz (> `f_min`); included when it falls on the grid.
+        step : float
+            Spacing in Hz (> 0).
+
+        Returns
+        -------
+        FrequencyGrid
+            ``f_min + step * k`` for ``k = 0, 1, ...`` up to `f_max`.
+
+        Raises
+        ------
+        CaseError
+            If the band or the step is not valid.
+        """
         _check_band(f_min, f_max)
         if not (np.isfinite(step) and step > 0):
             raise CaseError("frequency.step", step, "must be a finite number > 0 (Hz)")

@@ -145,7 +145,19 @@ class Parameter:
         return [(op, float(getattr(self, a))) for a, op in _OPS if getattr(self, a) is not None]
 
     def describe_allowed(self, with_unit: bool = True) -> str:
-        """What the parameter accepts, in words (bounds, choices and, if asked, the unit)."""
+        """What the parameter accepts, in words (bounds, choices and, if asked, the unit).
+
+        Parameters
+        ----------
+        with_unit : bool
+            Append the unit in parentheses (not for dimensionless ``"-"`` or unitless
+            parameters).
+
+        Returns
+        -------
+        str
+            `allowed` if given, else e.g. ``"> 0.0 (N/m)"`` or ``"one of 'a', 'b'"``.
+        """
         if self.allowed is not None:
             return self.allowed
         unit = f" ({self.unit})" if with_unit and self.unit and self.unit != "-" else ""
@@ -182,6 +194,34 @@ def parameter(
     Use it as the field's default: ``stiffness_n_per_m: float = parameter("N/m", "k", gt=0)``.
     The kind follows from the annotation (``float``, ``int``, ``bool``, ``str``,
     ``tuple[float, ...]``) unless given; the key is the field name unless given.
+
+    Parameters
+    ----------
+    unit : str
+        Unit of the value (``"-"`` for dimensionless, ``""`` where none applies).
+    doc : str
+        One line of documentation.
+    default : object
+        Value when the key is omitted; :data:`REQUIRED` (the default) when it must be given.
+    kind : str, optional
+        The kind of value (see :class:`Parameter`); None derives it from the annotation.
+    key : str, optional
+        Name in case-file tables; None uses the field name.
+    gt, ge, lt, le : float, optional
+        Bounds of a number (of each element of ``numbers``), in the parameter's `unit`.
+    choices : tuple, optional
+        The values allowed (``integer`` and ``text``).
+    allowed : str, optional
+        Text used in errors instead of the one built from bounds and choices.
+    typical : (float, float), optional
+        A plausible range in the parameter's `unit` (hypothesis strategies, docs);
+        sampled log-uniformly when `log` is true.
+    log : bool
+        The plausible range spans decades.
+    family : Registry, optional
+        Family of a ``member`` parameter.
+    table : type, optional
+        Dataclass of a ``table`` parameter (its fields declared with :func:`parameter`).
 
     Returns
     -------
@@ -548,6 +588,18 @@ class Registry(Generic[T]):
     def get(self, name: str, field: str = "") -> Member[T]:
         """The member called `name` (or an alias of it).
 
+        Parameters
+        ----------
+        name : str
+            Member name or alias, e.g. ``"spring_damper"``.
+        field : str
+            Dotted name of the table, used in errors (``"track.pad"``).
+
+        Returns
+        -------
+        Member
+            The registered member.
+
         Raises
         ------
         CaseError
@@ -637,6 +689,11 @@ class Registry(Generic[T]):
 
     def to_dict(self, obj: T) -> dict[str, Any]:
         """The table of member `obj`, such that ``from_dict(to_dict(obj))`` rebuilds it.
+
+        Parameters
+        ----------
+        obj : object
+            An instance of a registered member class (exactly, not a subclass).
 
         Returns
         -------
@@ -814,7 +871,18 @@ def merge_tables(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[s
 
 
 def resolve_paths(table: Any, registry: Registry[Any], base_dir: Path) -> None:
-    """Make every relative ``path`` parameter in `table` relative to `base_dir` (in place)."""
+    """Make every relative ``path`` parameter in `table` relative to `base_dir` (in place).
+
+    Parameters
+    ----------
+    table : mapping
+        A member table of `registry`'s family (nested tables included); anything else
+        is left alone.
+    registry : Registry
+        The family whose declarations say which keys are paths.
+    base_dir : pathlib.Path
+        Folder the relative paths are taken from (the case file's folder).
+    """
     for d, key in registry.paths(table):
         if isinstance(d[key], str) and not Path(d[key]).is_absolute():
             d[key] = str(base_dir / d[key])  # type: ignore[index]

@@ -30,7 +30,20 @@ def rail_label(wheel: int) -> str:
 
 
 def response_labels(vehicle_dofs: Sequence[str], n_wheel: int) -> tuple[str, ...]:
-    """Labels of a run's responses: the vehicle DOFs, then the rail under each wheel."""
+    """Labels of a run's responses: the vehicle DOFs, then the rail under each wheel.
+
+    Parameters
+    ----------
+    vehicle_dofs : sequence of str
+        Names of the vehicle DOFs, e.g. ``"carbody.bounce"``.
+    n_wheel : int
+        Number of wheels.
+
+    Returns
+    -------
+    tuple of str
+        `vehicle_dofs` followed by ``rail@wheel1`` ... ``rail@wheel<n_wheel>``.
+    """
     return (*vehicle_dofs, *(rail_label(j + 1) for j in range(n_wheel)))
 
 

@@ -148,6 +148,16 @@ def contact_check(
 def run(case: Case | str | Path) -> xr.Dataset:
     """Run one case (a validated :class:`~railvib.case.Case` or a TOML path).
 
+    Parameters
+    ----------
+    case : Case, str or pathlib.Path
+        A validated case or a TOML case file.
+
+    Returns
+    -------
+    xarray.Dataset
+        Response PSDs and FRFs on the case's grid (see :func:`run_system`).
+
     Examples
     --------
     >>> import railvib

@@ -29,15 +29,48 @@ FloatOrArray = TypeVar("FloatOrArray", float, NDArray[np.float64])
 
 
 def kmh_to_ms(speed_kmh: float) -> float:
-    """Convert km/h to m/s."""
+    """Convert km/h to m/s.
+
+    Parameters
+    ----------
+    speed_kmh : float
+        Speed in km/h.
+
+    Returns
+    -------
+    float
+        The same speed in m/s.
+    """
     return speed_kmh / 3.6
 
 
 def celsius_to_kelvin(t_celsius: FloatOrArray) -> FloatOrArray:
-    """Convert degrees Celsius to kelvin."""
+    """Convert degrees Celsius to kelvin.
+
+    Parameters
+    ----------
+    t_celsius : float or numpy.ndarray
+        Temperature in degC.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The same temperature in K, of the kind given.
+    """
     return t_celsius + ZERO_CELSIUS_K
 
 
 def kelvin_to_celsius(t_kelvin: FloatOrArray) -> FloatOrArray:
-    """Convert kelvin to degrees Celsius."""
+    """Convert kelvin to degrees Celsius.
+
+    Parameters
+    ----------
+    t_kelvin : float or numpy.ndarray
+        Temperature in K.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The same temperature in degC, of the kind given.
+    """
     return t_kelvin - ZERO_CELSIUS_K

@@ -33,7 +33,18 @@ def build_vehicle(case: Case) -> Vehicle:
 
 
 def build_pad(case: Case) -> PadModel:
-    """The railpad model of one rail seat (before any rail_pair doubling)."""
+    """The railpad model of one rail seat (before any rail_pair doubling).
+
+    Parameters
+    ----------
+    case : Case
+        A validated case.
+
+    Returns
+    -------
+    PadModel
+        The ``[track.pad]`` model, complex stiffness per rail seat in N/m.
+    """
     return PADS.from_dict(dict(case.track.pad), "track.pad")
 
 
@@ -47,7 +58,19 @@ def _rail_multiplier(case: Case) -> float:
 
 
 def build_track(case: Case) -> PeriodicTrack:
-    """The periodic track; in ``rail_pair`` mode the beam and pads stand for both rails."""
+    """The periodic track; in ``rail_pair`` mode the beam and pads stand for both rails.
+
+    Parameters
+    ----------
+    case : Case
+        A validated case.
+
+    Returns
+    -------
+    PeriodicTrack
+        The rigid-base periodic track in SI units; in ``rail_pair`` mode EI, m, kappa G A,
+        rho I and the pad stiffness are doubled.
+    """
     n = _rail_multiplier(case)
     rail = Rail(**case.track.rail.model_dump())
     pad = build_pad(case)
@@ -73,6 +96,19 @@ def contact_stiffness(case: Case, vehicle: Vehicle | None = None) -> float:
     Given explicitly, or the linearised Hertz stiffness at the static load of
     one wheel (half the wheelset load), doubled in ``rail_pair`` mode where the
     two wheels of a wheelset act in parallel on the one beam.
+
+    Parameters
+    ----------
+    case : Case
+        A validated case.
+    vehicle : Vehicle, optional
+        The case's vehicle if already built (its static wheel loads in N are used);
+        None builds it.
+
+    Returns
+    -------
+    float
+        Contact stiffness k_H in N/m.
     """
     if case.contact.stiffness is not None:
         return case.contact.stiffness

@@ -85,6 +85,18 @@ def merge_case_dicts(base: dict[str, Any], override: dict[str, Any]) -> dict[str
     """Deep-merge `override` onto `base` (see :func:`railvib.registry.merge_tables`).
 
     A table that names a member (``model`` or ``type``) replaces the base table.
+
+    Parameters
+    ----------
+    base : dict
+        Parsed case tables, e.g. a preset.
+    override : dict
+        Parsed case tables merged on top, e.g. a user's case file.
+
+    Returns
+    -------
+    dict
+        A new dict; neither input is modified.
     """
     return merge_tables(base, override)
 

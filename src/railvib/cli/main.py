@@ -115,7 +115,18 @@ _register_optional()
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point: run the CLI; a RailvibError becomes one line on stderr and exit code 2."""
+    """Entry point: run the CLI; a RailvibError becomes one line on stderr and exit code 2.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments without the program name; None reads ``sys.argv``.
+
+    Returns
+    -------
+    int
+        Exit code: 0 on success, 2 for a RailvibError, 130 when aborted, else click's code.
+    """
     try:
         cli.main(args=argv, standalone_mode=False)
     except RailvibError as exc:

@@ -12,7 +12,17 @@ __all__ = ["run_case_command"]
 
 
 def run_case_command(case_file: Path, outdir: Path, plots: bool = True) -> None:
-    """Run `case_file` into `outdir`, print its summary (:func:`railvib.solve.run_to_folder`)."""
+    """Run `case_file` into `outdir`, print its summary (:func:`railvib.solve.run_to_folder`).
+
+    Parameters
+    ----------
+    case_file : pathlib.Path
+        TOML case file.
+    outdir : pathlib.Path
+        Output folder (created if needed).
+    plots : bool
+        Draw the PSD overview figures.
+    """
     out = run_to_folder(case_file, outdir, plots=plots)
     click.echo(out.summary.to_string(float_format=lambda v: f"{v:.4g}"))
     for note in out.notes:

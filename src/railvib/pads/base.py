@@ -90,15 +90,57 @@ class PadModel(ABC):
         """
 
     def storage(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.float64]:
-        """Storage stiffness ``K'`` in N/m."""
+        """Storage stiffness ``K'`` in N/m.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0). Any shape; the result has the same shape.
+        temperature : float, optional
+            Pad temperature in degrees Celsius (degC). Models that do not depend on
+            temperature ignore it.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``K'`` in N/m, shape of `f`.
+        """
         return np.real(self.stiffness(f, temperature))
 
     def loss(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.float64]:
-        """Loss stiffness ``K''`` in N/m."""
+        """Loss stiffness ``K''`` in N/m.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0). Any shape; the result has the same shape.
+        temperature : float, optional
+            Pad temperature in degrees Celsius (degC). Models that do not depend on
+            temperature ignore it.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``K''`` in N/m, shape of `f`.
+        """
         return np.imag(self.stiffness(f, temperature))
 
     def loss_factor(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.float64]:
-        """Loss factor ``eta = K'' / K'`` (dimensionless)."""
+        """Loss factor ``eta = K'' / K'`` (dimensionless).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0). Any shape; the result has the same shape.
+        temperature : float, optional
+            Pad temperature in degrees Celsius (degC). Models that do not depend on
+            temperature ignore it.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``eta`` (dimensionless), shape of `f`.
+        """
         k = self.stiffness(f, temperature)
         return np.imag(k) / np.real(k)
 

@@ -130,7 +130,18 @@ class WLF:
         return -self.c1 * dt / (self.c2_k + dt)
 
     def shift_factor(self, temperature_c: ArrayLike) -> NDArray[np.float64]:
-        """``a_T`` (dimensionless) at temperatures in degC."""
+        """``a_T`` (dimensionless) at temperatures in degC.
+
+        Parameters
+        ----------
+        temperature_c : array_like
+            Temperatures T in degC (> T0 - C2), any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shift factor ``a_T = 10^log_shift`` (dimensionless), shape of `temperature_c`.
+        """
         return 10.0 ** self.log_shift(temperature_c)
 
     def reduced_frequency(self, f: ArrayLike, temperature_c: float) -> NDArray[np.float64]:

@@ -160,7 +160,26 @@ def _fit_starts_zener(
     n_terms: int | None,
     f0_hz: float,
 ) -> list[FitStart]:
-    """Fit starts of :class:`FractionalZener` (see :meth:`PadModel.fit_starts`)."""
+    """Fit starts of :class:`FractionalZener` (see :meth:`PadModel.fit_starts`).
+
+    Parameters
+    ----------
+    cls : type
+        The model class (bound by ``classmethod``).
+    f : numpy.ndarray
+        Frequencies of the data in Hz, shape ``(n_freq,)``.
+    k : numpy.ndarray
+        Complex stiffness at `f` in N/m, shape ``(n_freq,)``.
+    n_terms : int, optional
+        Number of terms of a series model (unused here).
+    f0_hz : float
+        Reference frequency of power-law models in Hz (unused here).
+
+    Returns
+    -------
+    list of FitStart
+        Three starts, ``alpha = 0.2, 0.5, 0.9``, scaled by the median storage stiffness.
+    """
     return _zener_starts(f, k, float(np.median(k.real)))
 
 
@@ -172,7 +191,27 @@ def _fit_starts_prony(
     n_terms: int | None,
     f0_hz: float,
 ) -> list[FitStart]:
-    """Fit starts of :class:`GeneralizedMaxwell` (see :meth:`PadModel.fit_starts`)."""
+    """Fit starts of :class:`GeneralizedMaxwell` (see :meth:`PadModel.fit_starts`).
+
+    Parameters
+    ----------
+    cls : type
+        The model class (bound by ``classmethod``).
+    f : numpy.ndarray
+        Frequencies of the data in Hz, shape ``(n_freq,)``.
+    k : numpy.ndarray
+        Complex stiffness at `f` in N/m, shape ``(n_freq,)``.
+    n_terms : int, optional
+        Number of Maxwell branches; None picks about two per decade of the band widened
+        by a decade each side.
+    f0_hz : float
+        Reference frequency of power-law models in Hz (unused here).
+
+    Returns
+    -------
+    list of FitStart
+        One start, relaxation times log-uniform over the widened band.
+    """
     return _prony_starts(f, k, float(np.median(k.real)), n_terms)
 
 

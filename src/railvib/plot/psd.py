@@ -27,7 +27,18 @@ OVERVIEW_GROUPS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
 
 
 def axis_label(da: xr.DataArray) -> str:
-    """``long_name [units]`` from a DataArray's attributes."""
+    """``long_name [units]`` from a DataArray's attributes.
+
+    Parameters
+    ----------
+    da : xarray.DataArray
+        A variable with ``long_name`` (else its name) and, optionally, ``units`` attributes.
+
+    Returns
+    -------
+    str
+        The axis label, without brackets when there is no unit.
+    """
     name = da.attrs.get("long_name", da.name or "")
     unit = da.attrs.get("units")
     return f"{name} [{unit}]" if unit else str(name)
@@ -88,7 +99,20 @@ def plot_psd(
 
 
 def save_overview(ds: xr.Dataset, outdir: str | Path) -> list[Path]:
-    """Write one PNG per response group (car body, bogies, wheelsets, rail) to `outdir`."""
+    """Write one PNG per response group (car body, bogies, wheelsets, rail) to `outdir`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset of :func:`railvib.run`.
+    outdir : str or pathlib.Path
+        Folder for the PNG files (``<stem>.png`` of :data:`OVERVIEW_GROUPS`).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written; a group with none of its responses in `ds` is skipped.
+    """
     outdir = Path(outdir)
     written = []
     for stem, title, responses in OVERVIEW_GROUPS:

@@ -30,7 +30,18 @@ DEFAULT_RESPONSES = ("carbody.bounce", "wheelset1.bounce", rail_label(1))
 
 
 def sweep_dims(ds: xr.Dataset) -> list[str]:
-    """Return the sweep dimensions of a sweep dataset, in file order."""
+    """Return the sweep dimensions of a sweep dataset, in file order.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep dataset (its ``sweep_dims`` attribute, comma-separated text or a list).
+
+    Returns
+    -------
+    list of str
+        The dimension names; empty if the attribute is missing.
+    """
     dims = ds.attrs.get("sweep_dims", "")
     if isinstance(dims, str):
         return [d for d in dims.split(",") if d]
@@ -146,7 +157,20 @@ def plot_sweep(
 
 
 def save_axes(ax: Axes, path: str | Path) -> Path:
-    """Save the figure of `ax` as a PNG atomically and close it."""
+    """Save the figure of `ax` as a PNG atomically and close it.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes whose (top-level) figure is written, as drawn (no tight layout).
+    path : str or pathlib.Path
+        The PNG file.
+
+    Returns
+    -------
+    pathlib.Path
+        `path`.
+    """
     return save_figure(ax, path, tight=False)
 
 

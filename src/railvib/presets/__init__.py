@@ -41,6 +41,23 @@ def load_preset(name: str, _chain: tuple[str, ...] = ()) -> dict[str, Any]:
 
     A preset may itself start from another with ``preset = "<name>"`` and override
     fields, exactly like a user's case file.
+
+    Parameters
+    ----------
+    name : str
+        Preset name (one of :func:`list_presets`).
+    _chain : tuple of str
+        Presets already being loaded (internal: detects a cycle of presets).
+
+    Returns
+    -------
+    dict
+        The parsed TOML tables, the ``preset`` key resolved.
+
+    Raises
+    ------
+    CaseError
+        Unknown preset, or a cycle of presets.
     """
     if name in _chain:
         raise CaseError("preset", name, f"no cycle of presets ({' -> '.join((*_chain, name))})")

@@ -14,7 +14,18 @@ __all__ = ["load_study_cases", "run_cases"]
 
 
 def load_study_cases(cases: Sequence[StudyCase] = CASES) -> dict[str, Case]:
-    """The validated case of every study case, by case key."""
+    """The validated case of every study case, by case key.
+
+    Parameters
+    ----------
+    cases : sequence of StudyCase
+        The cases (default: all of :data:`railvib.reproduce.study.CASES`).
+
+    Returns
+    -------
+    dict of str to Case
+        The validated case of each study case's preset, by case key.
+    """
     return {c.key: case_from_dict({"preset": c.preset}) for c in cases}
 
 

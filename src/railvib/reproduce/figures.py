@@ -106,7 +106,22 @@ def draw_figure(spec: FigureSpec, results: Mapping[str, xr.Dataset]) -> Figure:
 def save_paper_figure(
     spec: FigureSpec, results: Mapping[str, xr.Dataset], outdir: str | Path
 ) -> Path:
-    """Draw `spec` and write it as ``<outdir>/<spec.stem>.png``, atomically."""
+    """Draw `spec` and write it as ``<outdir>/<spec.stem>.png``, atomically.
+
+    Parameters
+    ----------
+    spec : FigureSpec
+        The figure to draw (see :func:`draw_figure`).
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    outdir : str or pathlib.Path
+        Folder for the PNG file.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
     return save_figure(draw_figure(spec, results), Path(outdir) / f"{spec.stem}.png", tight=False)
 
 
@@ -119,6 +134,19 @@ def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path) -> Path:
 
     Drawn from the pad models of the study's cases (the paper's log-linear law with
     kappa = 0.07 held below f0), on log-log axes with the paper's 100 Hz marked.
+
+    Parameters
+    ----------
+    cases : mapping of str to Case
+        Validated study cases by key (see :func:`railvib.reproduce.cases.load_study_cases`);
+        the keys of :data:`FIG8_CASES` must be present.
+    outdir : str or pathlib.Path
+        Folder for ``fig08_pad_stiffness.png``.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
     """
     f = np.geomspace(1.0, 1000.0, 200)
     curves = {

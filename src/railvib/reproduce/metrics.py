@@ -43,36 +43,139 @@ Band = tuple[float, float]
 
 
 def psd(results: Results, case: str, response: str) -> xr.DataArray:
-    """Acceleration PSD of `response` in `case`, (m/s^2)^2/Hz against frequency (Hz)."""
+    """Acceleration PSD of `response` in `case`, (m/s^2)^2/Hz against frequency (Hz).
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    case : str
+        Key of the case in `results`.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+
+    Returns
+    -------
+    xarray.DataArray
+        One-sided acceleration PSD in (m/s^2)^2/Hz ((rad/s^2)^2/Hz for a pitch response),
+        dimension ``frequency`` in Hz.
+    """
     return results[case]["psd_acceleration"].sel(response=response)
 
 
 def peak(results: Results, case: str, response: str, band: Band) -> float:
-    """Largest PSD value in `band` (Hz), m^2/s^4/Hz."""
+    """Largest PSD value in `band` (Hz), m^2/s^4/Hz.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    case : str
+        Key of the case in `results`.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        The peak in m^2/s^4/Hz.
+    """
     return float(_peak(psd(results, case, response), band))
 
 
 def peak_frequency(results: Results, case: str, response: str, band: Band) -> float:
-    """Frequency (Hz) of the largest PSD value in `band` (Hz)."""
+    """Frequency (Hz) of the largest PSD value in `band` (Hz).
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    case : str
+        Key of the case in `results`.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        Frequency of the peak in Hz (a grid frequency).
+    """
     return float(dominant_frequency(psd(results, case, response), band))
 
 
 def peak_ratio(
     results: Results, cases: Sequence[str], response: str, band: Band, percent: bool = False
 ) -> float:
-    """Ratio of the maxima in `band` of ``cases[0]`` over ``cases[1]`` (x100 if `percent`)."""
+    """Ratio of the maxima in `band` of ``cases[0]`` over ``cases[1]`` (x100 if `percent`).
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    cases : sequence of str
+        The two case keys compared, ``(cases[0], cases[1])``.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    percent : bool
+        Return the ratio in percent.
+
+    Returns
+    -------
+    float
+        Peak ratio (dimensionless), or in % if `percent`.
+    """
     num, den = (peak(results, c, response, band) for c in cases)
     return num / den * (100.0 if percent else 1.0)
 
 
 def peak_difference(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
-    """Absolute difference of the maxima in `band` of the two cases, m^2/s^4/Hz."""
+    """Absolute difference of the maxima in `band` of the two cases, m^2/s^4/Hz.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    cases : sequence of str
+        The two case keys compared, ``(cases[0], cases[1])``.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        ``|peak_0 - peak_1|`` in m^2/s^4/Hz.
+    """
     a, b = (peak(results, c, response, band) for c in cases)
     return abs(a - b)
 
 
 def frequency_shift(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
-    """Peak frequency of ``cases[0]`` minus that of ``cases[1]``, in `band`, Hz."""
+    """Peak frequency of ``cases[0]`` minus that of ``cases[1]``, in `band`, Hz.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    cases : sequence of str
+        The two case keys compared, ``(cases[0], cases[1])``.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        Frequency difference in Hz.
+    """
     a, b = (peak_frequency(results, c, response, band) for c in cases)
     return a - b
 
@@ -82,13 +185,47 @@ def _rms(results: Results, case: str, response: str, band: Band) -> float:
 
 
 def rms_ratio(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
-    """RMS over `band` (Hz) of ``cases[0]`` divided by that of ``cases[1]``."""
+    """RMS over `band` (Hz) of ``cases[0]`` divided by that of ``cases[1]``.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    cases : sequence of str
+        The two case keys compared, ``(cases[0], cases[1])``.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        RMS ratio (dimensionless).
+    """
     num, den = (_rms(results, c, response, band) for c in cases)
     return num / den
 
 
 def rms_spread(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
-    """Spread of the RMS over `band` (Hz) among `cases`: ``100 (max / min - 1)``, in %."""
+    """Spread of the RMS over `band` (Hz) among `cases`: ``100 (max / min - 1)``, in %.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    cases : sequence of str
+        Keys of the cases compared.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        The spread in %.
+    """
     values = [_rms(results, c, response, band) for c in cases]
     return 100.0 * (max(values) / min(values) - 1.0)
 
@@ -98,6 +235,22 @@ def crossover(results: Results, cases: Sequence[str], response: str, band: Band)
 
     The first sign change from negative to positive of ``log(PSD_0 / PSD_1)`` in
     `band`, linearly interpolated between grid points. NaN if there is none.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    cases : sequence of str
+        The two case keys compared, ``(cases[0], cases[1])``.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        The crossover frequency in Hz, or NaN.
     """
     a, b = (psd(results, c, response).sel(frequency=slice(*band)) for c in cases)
     f = a["frequency"].values
@@ -113,6 +266,17 @@ def comb_period_hz(ds: xr.Dataset) -> float:
     """The wheelbase comb period ``v / (2 l_t)`` of a result, Hz.
 
     From the dataset's speed (m/s) and the distance between the first two wheels (m).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset of :func:`railvib.run` (attributes ``speed_m_per_s`` and
+        ``wheel_positions_m``).
+
+    Returns
+    -------
+    float
+        The comb period in Hz.
     """
     x = np.asarray(ds.attrs["wheel_positions_m"], dtype=float)
     return float(ds.attrs["speed_m_per_s"]) / abs(float(x[0] - x[1]))
@@ -130,6 +294,26 @@ def comb_spacing(
 
     Local maxima of ``log10 PSD`` with a prominence of at least `prominence_decades`
     and at least `min_distance_hz` apart; the spacing is ``(f_last - f_first)/(n - 1)``.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    case : str
+        Key of the case in `results`.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    prominence_decades : float
+        Smallest prominence of a peak of ``log10 PSD``, in decades.
+    min_distance_hz : float
+        Smallest distance between two peaks in Hz.
+
+    Returns
+    -------
+    float
+        Mean peak spacing in Hz, or NaN if fewer than two peaks are found.
     """
     a = psd(results, case, response).sel(frequency=slice(*band))
     f = a["frequency"].values
@@ -149,6 +333,22 @@ def envelope_peak_frequency(results: Results, case: str, response: str, band: Ba
 
     The trend is ``log10 PSD`` smoothed by a moving mean over one wheelbase comb
     period :func:`comb_period_hz`, which removes the comb's teeth.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    case : str
+        Key of the case in `results`.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+    band : (float, float)
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+
+    Returns
+    -------
+    float
+        Frequency of the trend's maximum in Hz (a grid frequency).
     """
     ds = results[case]
     a = psd(results, case, response).sel(frequency=slice(*band))
@@ -159,7 +359,24 @@ def envelope_peak_frequency(results: Results, case: str, response: str, band: Ba
 
 
 def headline_ratio(results: Results, reference: str, cases: Sequence[str], response: str) -> float:
-    """Largest whole-grid peak among `cases` divided by the `reference` case's peak."""
+    """Largest whole-grid peak among `cases` divided by the `reference` case's peak.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    reference : str
+        Key of the reference case.
+    cases : sequence of str
+        Keys of the cases compared.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+
+    Returns
+    -------
+    float
+        Peak ratio (dimensionless).
+    """
     whole = _whole(results[reference])
     return max(peak(results, c, response, whole) for c in cases) / peak(
         results, reference, response, whole
@@ -167,7 +384,24 @@ def headline_ratio(results: Results, reference: str, cases: Sequence[str], respo
 
 
 def headline_shift(results: Results, reference: str, cases: Sequence[str], response: str) -> float:
-    """Largest whole-grid dominant frequency among `cases` minus the `reference`'s, Hz."""
+    """Largest whole-grid dominant frequency among `cases` minus the `reference`'s, Hz.
+
+    Parameters
+    ----------
+    results : mapping of str to xarray.Dataset
+        Study results: case key -> result dataset of :func:`railvib.run`.
+    reference : str
+        Key of the reference case.
+    cases : sequence of str
+        Keys of the cases compared.
+    response : str
+        Response label (a value of the ``response`` coordinate).
+
+    Returns
+    -------
+    float
+        Frequency difference in Hz.
+    """
     whole = _whole(results[reference])
     return max(peak_frequency(results, c, response, whole) for c in cases) - peak_frequency(
         results, reference, response, whole

@@ -165,7 +165,26 @@ def write_report(
     cases: Mapping[str, Case],
     meta: Mapping[str, str],
 ) -> Path:
-    """Write :func:`render_report` to `path`, atomically."""
+    """Write :func:`render_report` to `path`, atomically.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The HTML file.
+    table : pandas.DataFrame
+        The comparison table (:func:`railvib.reproduce.table.compare`).
+    figures : sequence of (int, pathlib.Path)
+        Each figure's number in the paper and its PNG file (embedded as base64).
+    cases : mapping of str to Case
+        The study's validated cases by key.
+    meta : mapping of str to str
+        Run information shown at the end (version, run time, ...).
+
+    Returns
+    -------
+    pathlib.Path
+        `path`.
+    """
     path = Path(path)
     text = render_report(table, figures, cases, meta)
     with atomic_path(path) as tmp:

@@ -79,7 +79,18 @@ def compare(results: Results, numbers: Sequence[PaperNumber] = PAPER_NUMBERS) ->
 
 
 def format_value(value: float) -> str:
-    """Four significant digits; empty for NaN."""
+    """Four significant digits; empty for NaN.
+
+    Parameters
+    ----------
+    value : float or None
+        A number in any unit (that of the table's ``unit`` column); NaN or None gives "".
+
+    Returns
+    -------
+    str
+        ``f"{value:.4g}"``, or the empty string.
+    """
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return ""
     return f"{value:.4g}"
@@ -121,7 +132,20 @@ def to_markdown(table: pd.DataFrame) -> str:
 
 
 def write_table(table: pd.DataFrame, outdir: str | Path) -> list[Path]:
-    """Write ``paper_comparison.csv`` and ``paper_comparison.md`` to `outdir`, atomically."""
+    """Write ``paper_comparison.csv`` and ``paper_comparison.md`` to `outdir`, atomically.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The comparison table (:func:`compare`).
+    outdir : str or pathlib.Path
+        Folder for the two files.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The CSV and the Markdown file.
+    """
     outdir = Path(outdir)
     csv_path, md_path = outdir / "paper_comparison.csv", outdir / "paper_comparison.md"
     with atomic_path(csv_path) as tmp:

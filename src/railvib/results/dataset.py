@@ -161,7 +161,22 @@ def load_netcdf(path: str | Path) -> xr.Dataset:
 
 
 def save_csv(ds: xr.Dataset, path: str | Path, variable: str = "psd_acceleration") -> Path:
-    """Write one (frequency x response) variable as a CSV table, atomically."""
+    """Write one (frequency x response) variable as a CSV table, atomically.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset (see :func:`build_dataset`).
+    path : str or pathlib.Path
+        CSV file to write.
+    variable : str
+        A variable with dims ``(frequency, response)``, e.g. ``"psd_displacement"``.
+
+    Returns
+    -------
+    pathlib.Path
+        `path`. Columns are headed ``<response> [<units>]``, rows ``frequency [Hz]``.
+    """
     da = ds[variable]
     df = da.to_pandas()
     unit = da.attrs.get("units", "")

@@ -12,18 +12,73 @@ __all__ = ["band_rms", "dominant_frequency", "peak", "summary", "summary_attrs",
 
 
 def peak(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataArray:
-    """Largest PSD value over `band` (Hz, inclusive; whole grid if None)."""
+    """Largest PSD value over `band` (Hz, inclusive; whole grid if None).
+
+    Parameters
+    ----------
+    psd : xarray.DataArray
+        One-sided PSD per Hz (e.g. (m/s^2)^2/Hz) with a ``frequency`` dimension in Hz.
+    band : (float, float), optional
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive; None: the whole grid.
+
+    Returns
+    -------
+    xarray.DataArray
+        The peak in the unit of `psd`, over the dimensions of `psd` other than ``frequency``.
+
+    Raises
+    ------
+    ValueError
+        If `band` holds no grid frequency.
+    """
     return _in_band(psd, band).max("frequency")
 
 
 def dominant_frequency(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataArray:
-    """Frequency (Hz) of the largest PSD value over `band`."""
+    """Frequency (Hz) of the largest PSD value over `band`.
+
+    Parameters
+    ----------
+    psd : xarray.DataArray
+        One-sided PSD per Hz (e.g. (m/s^2)^2/Hz) with a ``frequency`` dimension in Hz.
+    band : (float, float), optional
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive; None: the whole grid.
+
+    Returns
+    -------
+    xarray.DataArray
+        Frequency of the peak in Hz, over the dimensions of `psd` other than ``frequency``.
+
+    Raises
+    ------
+    ValueError
+        If `band` holds no grid frequency.
+    """
     sel = _in_band(psd, band)
     return sel["frequency"][sel.argmax("frequency")].drop_vars("frequency", errors="ignore")
 
 
 def band_rms(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataArray:
-    """RMS = sqrt(integral of the one-sided PSD over `band`), trapezoidal rule on the grid."""
+    """RMS = sqrt(integral of the one-sided PSD over `band`), trapezoidal rule on the grid.
+
+    Parameters
+    ----------
+    psd : xarray.DataArray
+        One-sided PSD per Hz (e.g. (m/s^2)^2/Hz) with a ``frequency`` dimension in Hz.
+    band : (float, float), optional
+        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive; None: the whole grid.
+
+    Returns
+    -------
+    xarray.DataArray
+        RMS in the square root of the unit of `psd` times Hz (e.g. m/s^2), over the
+        dimensions of `psd` other than ``frequency``.
+
+    Raises
+    ------
+    ValueError
+        If `band` holds no grid frequency.
+    """
     sel = _in_band(psd, band)
     axis = sel.get_axis_num("frequency")
     var = trapezoid(sel.values, sel["frequency"].values, axis=axis)

@@ -41,7 +41,18 @@ class SpatialSpectrum(ABC):
         """One-sided PSD in m^2/(rad/m) at spatial circular frequency `wavenumber` (rad/m, > 0)."""
 
     def psd_cycles(self, spatial_frequency: ArrayLike) -> NDArray[np.float64]:
-        """One-sided PSD in m^2/(cycle/m) at spatial frequency n in cycle/m: ``2 pi S(2 pi n)``."""
+        """One-sided PSD in m^2/(cycle/m) at spatial frequency n in cycle/m: ``2 pi S(2 pi n)``.
+
+        Parameters
+        ----------
+        spatial_frequency : array_like
+            Spatial frequencies n in cycle/m (1/wavelength, > 0), any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            One-sided PSD in m^2/(cycle/m), shape of `spatial_frequency`.
+        """
         n = np.asarray(spatial_frequency, dtype=float)
         return 2.0 * np.pi * self.psd(2.0 * np.pi * n)
 

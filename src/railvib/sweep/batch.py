@@ -94,7 +94,18 @@ def frf_many_speeds(
 
 
 def case_labels(system: CoupledSystem) -> list[str]:
-    """Response labels of a run: vehicle DOFs, then ``rail@wheel<j>``."""
+    """Response labels of a run: vehicle DOFs, then ``rail@wheel<j>``.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The coupled system of a case (only its vehicle is read).
+
+    Returns
+    -------
+    list of str
+        The labels (see :func:`railvib.response.response_labels`).
+    """
     return list(response_labels(system.vehicle.dofs, system.vehicle.wheel_offsets.size))
 
 

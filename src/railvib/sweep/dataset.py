@@ -60,7 +60,18 @@ def field_unit(field: str) -> str:
 
 
 def summary_variables(ds: xr.Dataset) -> list[str]:
-    """Names of the summary variables of a sweep dataset."""
+    """Names of the summary variables of a sweep dataset.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep dataset (:func:`sweep_dataset`).
+
+    Returns
+    -------
+    list of str
+        The data variables without a ``frequency`` dimension, in dataset order.
+    """
     return [str(n) for n, da in ds.data_vars.items() if "frequency" not in da.dims]
 
 
@@ -73,7 +84,9 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
         The resolved sweep.
     arrays : dict of numpy.ndarray
         Per-frequency variables ``(*sweep_shape, n_freq[, n_resp])`` and
-        ``summary/<name>`` variables ``(*sweep_shape, n_resp)``.
+        ``summary/<name>`` variables ``(*sweep_shape, n_resp)``, each in the unit of its
+        variable (:data:`railvib.results.variables.VARIABLES`, e.g. (m/s^2)^2/Hz) or
+        summary (:func:`railvib.results.stats.summary_attrs`).
     fingerprint : str
         The sweep's fingerprint (stored as an attribute).
 
@@ -156,12 +169,38 @@ def load_sweep_dataset(path: str | Path) -> xr.Dataset:
 
 
 def save_sweep_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write the sweep dataset to netCDF-4 atomically."""
+    """Write the sweep dataset to netCDF-4 atomically.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The sweep dataset (:func:`sweep_dataset`).
+    path : str or pathlib.Path
+        The netCDF file.
+
+    Returns
+    -------
+    pathlib.Path
+        `path`.
+    """
     return save_netcdf(ds, path)
 
 
 def save_sweep_csv(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write the summary variables as one CSV table (a row per response and case)."""
+    """Write the summary variables as one CSV table (a row per response and case).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The sweep dataset (:func:`sweep_dataset`).
+    path : str or pathlib.Path
+        The CSV file; columns are headed ``<variable> [<units>]``.
+
+    Returns
+    -------
+    pathlib.Path
+        `path`.
+    """
     names = summary_variables(ds)
     table = ds[names].to_dataframe()
     table.columns = [f"{c} [{ds[c].attrs.get('units', '')}]" for c in table.columns]

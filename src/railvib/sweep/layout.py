@@ -99,7 +99,18 @@ class SweepLayout:
         return tuple(s.stop - s.start for s in self.chunk_slices(chunk_id))
 
     def chunk_indices(self, chunk_id: int) -> NDArray[np.int64]:
-        """Sweep indices of the cases of a chunk, ``(n_case, n_dim)``, C order."""
+        """Sweep indices of the cases of a chunk, ``(n_case, n_dim)``, C order.
+
+        Parameters
+        ----------
+        chunk_id : int
+            Chunk number, ``0 <= chunk_id < n_chunks`` (C order over the chunk grid).
+
+        Returns
+        -------
+        numpy.ndarray
+            Integer indices along each sweep dimension, shape ``(n_case, n_dim)``.
+        """
         ranges = [np.arange(s.start, s.stop) for s in self.chunk_slices(chunk_id)]
         mesh = np.meshgrid(*ranges, indexing="ij")
         return np.stack([m.ravel() for m in mesh], axis=1)
@@ -109,6 +120,17 @@ class SweepLayout:
 
         The values are plain, mutable copies (tables as dicts), ready for
         :func:`railvib.case.merge_case_dicts`.
+
+        Parameters
+        ----------
+        index : numpy.ndarray
+            Integer index along each sweep dimension, shape ``(n_dim,)`` (a row of
+            :meth:`chunk_indices`).
+
+        Returns
+        -------
+        list of (str, object)
+            Dotted case field and its value, one per sweep axis.
         """
         pos = dict(zip(self.dims, (int(i) for i in index), strict=True))
         return [(ax.field, ax.value(pos[ax.group])) for ax in self.spec.axes]

@@ -528,7 +528,20 @@ def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
 
 
 def nested_override(field: str, value: Any) -> dict[str, Any]:
-    """``"a.b.c", v`` -> ``{"a": {"b": {"c": v}}}`` (a deep copy of `value`)."""
+    """``"a.b.c", v`` -> ``{"a": {"b": {"c": v}}}`` (a deep copy of `value`).
+
+    Parameters
+    ----------
+    field : str
+        Dotted case field, e.g. ``"track.pad_temperature_c"``.
+    value : object
+        The field's value.
+
+    Returns
+    -------
+    dict
+        Nested tables holding (a deep copy of) `value` at `field`.
+    """
     out: dict[str, Any] = {}
     node = out
     parts = field.split(".")

@@ -239,6 +239,19 @@ class ChunkStore:
         The rename makes the chunk all-or-nothing against the death of any process
         (Ctrl-C, SIGKILL, a worker dying); there is no fsync, so after a power
         failure the file system decides.
+
+        Parameters
+        ----------
+        chunk_id : int
+            Chunk number (C order over the chunk grid).
+        arrays : dict of numpy.ndarray
+            The chunk's results (:func:`railvib.sweep.batch.compute_chunk`), each in the
+            unit of its variable or summary, cases first.
+
+        Returns
+        -------
+        pathlib.Path
+            The chunk file.
         """
         path = self.chunk_path(chunk_id)
         payload = {k.replace("/", "__"): v for k, v in arrays.items()}
@@ -248,7 +261,18 @@ class ChunkStore:
         return path
 
     def read(self, chunk_id: int) -> dict[str, NDArray[Any]]:
-        """Read the arrays of one finished chunk."""
+        """Read the arrays of one finished chunk.
+
+        Parameters
+        ----------
+        chunk_id : int
+            Chunk number (C order over the chunk grid).
+
+        Returns
+        -------
+        dict of numpy.ndarray
+            The arrays given to :meth:`write`, by name.
+        """
         with np.load(self.chunk_path(chunk_id)) as z:
             return {k.replace("__", "/"): z[k] for k in z.files if k != "fingerprint"}
 
@@ -279,6 +303,16 @@ class ChunkStore:
         """Write `ds` to ``OUT/sweep.zarr`` atomically (temporary folder, then rename).
 
         The store is chunked by case: one Zarr chunk per sweep chunk.
+
+        Parameters
+        ----------
+        ds : xarray.Dataset
+            The assembled sweep dataset (:meth:`assemble`).
+
+        Returns
+        -------
+        pathlib.Path
+            The Zarr store, ``OUT/sweep.zarr``.
         """
         target = self.root / ZARR_NAME
         tmp = Path(tempfile.mkdtemp(prefix=".sweep.zarr.", suffix=".part", dir=self.root))

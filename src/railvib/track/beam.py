@@ -80,7 +80,7 @@ def field_transfer(beta4: ArrayLike, length: float) -> NDArray[np.complex128]:
     Parameters
     ----------
     beta4 : array_like of complex
-        ``m omega^2 L0^4 / EI*`` per frequency.
+        ``m omega^2 L0^4 / EI*`` per frequency (dimensionless), shape ``(n_freq,)``.
     length : float
         Dimensionless span length (signed).
 
@@ -112,7 +112,7 @@ def dynamic_stiffness(beta4: ArrayLike, length: float) -> NDArray[np.complex128]
     Parameters
     ----------
     beta4 : array_like of complex
-        ``m omega^2 L0^4 / EI*`` per frequency.
+        ``m omega^2 L0^4 / EI*`` per frequency (dimensionless), shape ``(n_freq,)``.
     length : float
         Dimensionless span length (> 0).
 
@@ -165,11 +165,11 @@ def timoshenko_transfer(
     Parameters
     ----------
     beta4 : array_like of complex
-        ``m omega^2 L0^4 / EI*`` per frequency.
+        ``m omega^2 L0^4 / EI*`` per frequency (dimensionless), shape ``(n_freq,)``.
     shear_flexibility : complex
         ``eps = EI* / (kappa G A* L0^2)`` (dimensionless).
     rotary : array_like of complex
-        ``rho = rho_I omega^2 L0^2 / EI*`` per frequency.
+        ``rho = rho_I omega^2 L0^2 / EI*`` per frequency (dimensionless), shape ``(n_freq,)``.
     length : float
         Dimensionless span length (signed).
 

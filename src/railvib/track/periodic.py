@@ -189,6 +189,18 @@ class PeriodicTrack(TrackModel):
         State ``(w, d psi, d^2 psi', d^3 v)``: for an Euler rail ``psi = w'`` and
         ``v = w'''``; for a Timoshenko rail see
         :func:`~railvib.track.beam.timoshenko_transfer`.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+        length : float
+            Span length in bays, i.e. in units of the sleeper spacing d (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex transfer matrices (dimensionless), shape ``(n_freq, 4, 4)``.
         """
         f = _as_freq(f)
         if self.rail.shear_stiffness is None:
@@ -204,6 +216,16 @@ class PeriodicTrack(TrackModel):
 
         Maps the state just right of sleeper n to the same just right of sleeper
         n+1: the rail over one span (:meth:`span_transfer`), then the pad's shear jump.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex transfer matrices (dimensionless), shape ``(n_freq, 4, 4)``.
         """
         f = _as_freq(f)
         t = self.span_transfer(f, 1.0)
@@ -319,6 +341,17 @@ class PeriodicTrack(TrackModel):
         ``u = (w [m], theta [rad])`` and ``p = (shear [N], moment [N m])``, the
         force exerted across the interface on the bay to its right (paper Eq. 4).
         ``S^T J S = J`` with ``J = [[0, I], [-I, 0]]``.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex ``S`` mapping ``(w, theta, shear, moment)`` in (m, rad, N, N m) just
+            right of sleeper n to the same just right of sleeper n+1, shape ``(n_freq, 4, 4)``.
         """
         c, c_inv = self._state_maps()
         return c @ self.cell_transfer(f) @ c_inv
@@ -331,6 +364,17 @@ class PeriodicTrack(TrackModel):
         0.6 m of CHN60); the solver uses the pole-free :meth:`cell_transfer`. For
         an Euler rail it is the closed-form span stiffness; for a Timoshenko rail it
         is obtained from the transfer matrix (inverting paper Eq. 4).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex dynamic stiffness mapping ``(w_a, theta_a, w_b, theta_b)`` in (m, rad) to
+            the end forces and moments in (N, N m), shape ``(n_freq, 4, 4)``.
         """
         f = _as_freq(f)
         if self.rail.is_timoshenko:
@@ -354,6 +398,11 @@ class PeriodicTrack(TrackModel):
         self, f: ArrayLike
     ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
         """Dynamic stiffnesses of the semi-infinite rail seen from a sleeper (paper Eq. 6).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz (> 0), shape ``(n_freq,)``.
 
         Returns
         -------

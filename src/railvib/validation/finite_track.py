@@ -158,6 +158,33 @@ class FiniteTrack:
         """Build a track with nodes at `positions` (m) and `margin_spans` bays beyond them.
 
         The absorbing layers (if any) lie inside the margins, at the very ends.
+
+        Parameters
+        ----------
+        positions : array_like
+            Positions along the rail in m where nodes must lie (wheels, observation points).
+        rail : Rail
+            Rail beam (EI in N m^2, m in kg/m); Euler-Bernoulli only.
+        pad : PadModel
+            Railpad, complex stiffness per rail seat in N/m.
+        sleeper_spacing : float
+            Sleeper spacing d in m (> 0).
+        margin_spans : int
+            Bays of finite track beyond the outermost positions on each side.
+        elements_per_span : int
+            Hermite elements per bay (8: 1.7e-5 relative receptance error at 1 kHz).
+        absorber_spans : int
+            Bays with graded extra pad damping at each end, inside the margins.
+        absorber_damping : float
+            Extra pad damping at the outermost sleepers, N s/m (>= 0).
+        pad_temperature : float, optional
+            Pad temperature in degrees Celsius (degC), passed to the pad model.
+
+        Returns
+        -------
+        FiniteTrack
+            Sleepers from ``floor(min(positions) / d) - margin_spans`` to
+            ``ceil(max(positions) / d) + margin_spans``.
         """
         x = np.atleast_1d(np.asarray(positions, dtype=float))
         d = sleeper_spacing

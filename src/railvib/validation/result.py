@@ -70,7 +70,18 @@ class ValidationSettings:
 
     @classmethod
     def quick(cls, realisations: int | None = None) -> ValidationSettings:
-        """Settings for the test suite: 150 FRF points, short Monte Carlo (about 20 s a case)."""
+        """Settings for the test suite: 150 FRF points, short Monte Carlo (about 20 s a case).
+
+        Parameters
+        ----------
+        realisations : int, optional
+            Number of Monte Carlo realisations; None keeps that of
+            :meth:`MonteCarloSettings.quick`.
+
+        Returns
+        -------
+        ValidationSettings
+        """
         mc = MonteCarloSettings.quick()
         if realisations is not None:
             mc = replace(mc, realisations=int(realisations))
@@ -161,7 +172,18 @@ class ValidationResult:
 
 
 def monte_carlo_work(settings: ValidationSettings) -> int:
-    """Total Newmark steps times realisations of one case (for a progress bar)."""
+    """Total Newmark steps times realisations of one case (for a progress bar).
+
+    Parameters
+    ----------
+    settings : ValidationSettings
+        The validation settings; only their Monte Carlo part is used.
+
+    Returns
+    -------
+    int
+        ``round((discard_seconds + record_seconds) / dt) * realisations``.
+    """
     mc = settings.monte_carlo
     steps = int(round((mc.discard_seconds + mc.record_seconds) / mc.dt))
     return steps * mc.realisations

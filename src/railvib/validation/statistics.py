@@ -31,7 +31,24 @@ __all__ = [
 
 
 def welch_dof(n_samples: int, nperseg: int, noverlap: int, window: str = "hann") -> float:
-    """Equivalent chi-square degrees of freedom of one Welch estimate (dimensionless)."""
+    """Equivalent chi-square degrees of freedom of one Welch estimate (dimensionless).
+
+    Parameters
+    ----------
+    n_samples : int
+        Length of the record, samples.
+    nperseg : int
+        Segment length, samples.
+    noverlap : int
+        Samples shared by neighbouring segments (< `nperseg`).
+    window : str
+        Window name understood by :func:`scipy.signal.get_window`.
+
+    Returns
+    -------
+    float
+        ``nu`` of the module docstring for one realisation (dimensionless).
+    """
     step = nperseg - noverlap
     k = 1 + (n_samples - nperseg) // step
     w = signal.get_window(window, nperseg)
@@ -54,11 +71,16 @@ def confidence_band(
     Parameters
     ----------
     estimate : array_like
-        PSD estimate.
+        PSD estimate in any PSD unit (e.g. (m/s^2)^2/Hz), any shape.
     dof : float
-        Equivalent degrees of freedom nu.
+        Equivalent degrees of freedom nu (dimensionless).
     confidence : float
         Two-sided confidence level in (0, 1).
+
+    Returns
+    -------
+    lower, upper : numpy.ndarray
+        The confidence limits, in the unit and shape of `estimate`.
     """
     s = np.asarray(estimate, dtype=float)
     alpha = 1.0 - confidence
@@ -101,13 +123,19 @@ def welch_psd(
     Parameters
     ----------
     x : array_like
-        Records, time first.
+        Records in the signal's unit (e.g. m/s^2), time first, shape
+        ``(n_samples, n_output, n_realisations)`` or ``(n_samples, n_output)`` (one realisation).
     sample_rate : float
-        Hz.
+        Sample rate in Hz.
     segment_seconds : float
         Segment length in s; the frequency resolution is ``1 / segment_seconds``.
     overlap : float
-        Fraction of a segment shared by neighbours, in [0, 1).
+        Fraction of a segment shared by neighbours, in [0, 1) (dimensionless).
+
+    Returns
+    -------
+    WelchEstimate
+        One-sided PSD per Hz in the signal's unit squared per Hz, averaged over realisations.
     """
     x = np.asarray(x, dtype=float)
     if x.ndim == 2:

@@ -29,7 +29,23 @@ __all__ = ["TimeHistory", "newmark_frequency_warp", "simulate_time_domain"]
 
 
 def newmark_frequency_warp(f: ArrayLike, dt: float) -> NDArray[np.float64]:
-    """Frequency (Hz) at which the continuous system answers what Newmark shows at `f` (Hz)."""
+    """Frequency (Hz) at which the continuous system answers what Newmark shows at `f` (Hz).
+
+    The average-acceleration (trapezoidal) Newmark scheme warps frequencies as
+    ``f_c = tan(pi f dt) / (pi dt)``.
+
+    Parameters
+    ----------
+    f : array_like
+        Frequencies seen in the Newmark response, Hz, any shape (``f dt < 1/2``).
+    dt : float
+        Time step in s.
+
+    Returns
+    -------
+    numpy.ndarray
+        Frequencies of the continuous system in Hz, shape of `f`.
+    """
     f = np.asarray(f, dtype=float)
     return np.tan(np.pi * f * dt) / (np.pi * dt)
 

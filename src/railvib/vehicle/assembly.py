@@ -132,7 +132,19 @@ class Vehicle:
         return xs[0] - xs
 
     def dynamic_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
-        """``K + i omega C - omega^2 M`` stacked over frequency, ``(n_freq, n_dof, n_dof)``."""
+        """``K + i omega C - omega^2 M`` stacked over frequency, ``(n_freq, n_dof, n_dof)``.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, shape ``(n_freq,)`` (a scalar counts as one).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex dynamic stiffness in SI units (N/m, N/rad, N m/m, N m/rad by DOF pair),
+            shape ``(n_freq, n_dof, n_dof)``.
+        """
         return _dynamic_stiffness(f, self.mass_matrix, self.damping_matrix, self.stiffness_matrix)
 
     @cached_property
@@ -190,6 +202,16 @@ class Vehicle:
 
         Solves the static equilibrium of the sprung bodies with the wheel points
         fixed; the contact reactions then balance the weight of everything.
+
+        Parameters
+        ----------
+        gravity : float
+            Gravitational acceleration in m/s^2 (default 9.81).
+
+        Returns
+        -------
+        numpy.ndarray
+            Contact load at each wheel in N, wheels front to back, shape ``(n_wheel,)``.
         """
         b = self.wheel_matrix
         weight = np.zeros(len(self.dofs))
