@@ -132,7 +132,7 @@ def _is_short_form(func) -> bool:
         return False
     one_line = len(text.strip().splitlines()) == 1
     names = [p.name for p in _parameters(func)]
-    return one_line and all(f"`{n}`" in text or n in text for n in names)
+    return one_line and all(re.search(rf"`{re.escape(n)}`|\b{re.escape(n)}\b", text) for n in names)
 
 
 def test_the_parser_sees_something():
