@@ -19,6 +19,7 @@ SRC = Path(__file__).resolve().parents[2] / "src" / "railvib"
 #: the layer of every unit (docs/design/0004-architecture.md, "Layers")
 LAYERS = {
     "errors": 0,
+    "docstrings": 0,
     "units": 0,
     "io": 1,
     "registry": 1,

@@ -22,8 +22,18 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.docstrings import fill_doc
 from railvib.errors import CaseError
 from railvib.registry import Registry, check_parameters
+
+#: parameter documentation shared by the pad methods (:func:`railvib.docstrings.fill_doc`)
+_SHARED = {
+    "f": """f : array_like
+    Frequencies in Hz (> 0). Any shape; the result has the same shape.""",
+    "temperature": """temperature : float, optional
+    Pad temperature in degrees Celsius (degC). Models that do not depend on
+    temperature ignore it.""",
+}
 
 __all__ = ["PADS", "FitStart", "PadModel"]
 
@@ -72,16 +82,14 @@ class PadModel(ABC):
         return False
 
     @abstractmethod
+    @fill_doc(_SHARED)
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """Complex dynamic stiffness ``K*(f, T)`` in N/m.
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0). Any shape; the result has the same shape.
-        temperature : float, optional
-            Pad temperature in degrees Celsius. Models that do not depend on
-            temperature ignore it.
+        {f}
+        {temperature}
 
         Returns
         -------
@@ -89,16 +97,14 @@ class PadModel(ABC):
             ``K' + i K''`` in N/m, ``exp(+i omega t)`` convention.
         """
 
+    @fill_doc(_SHARED)
     def storage(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.float64]:
         """Storage stiffness ``K'`` in N/m.
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0). Any shape; the result has the same shape.
-        temperature : float, optional
-            Pad temperature in degrees Celsius (degC). Models that do not depend on
-            temperature ignore it.
+        {f}
+        {temperature}
 
         Returns
         -------
@@ -107,16 +113,14 @@ class PadModel(ABC):
         """
         return np.real(self.stiffness(f, temperature))
 
+    @fill_doc(_SHARED)
     def loss(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.float64]:
         """Loss stiffness ``K''`` in N/m.
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0). Any shape; the result has the same shape.
-        temperature : float, optional
-            Pad temperature in degrees Celsius (degC). Models that do not depend on
-            temperature ignore it.
+        {f}
+        {temperature}
 
         Returns
         -------
@@ -125,16 +129,14 @@ class PadModel(ABC):
         """
         return np.imag(self.stiffness(f, temperature))
 
+    @fill_doc(_SHARED)
     def loss_factor(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.float64]:
         """Loss factor ``eta = K'' / K'`` (dimensionless).
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0). Any shape; the result has the same shape.
-        temperature : float, optional
-            Pad temperature in degrees Celsius (degC). Models that do not depend on
-            temperature ignore it.
+        {f}
+        {temperature}
 
         Returns
         -------

@@ -61,6 +61,13 @@ class FractionalZener(PadModel):
         typical=(0.1, 1.0),
     )
 
+    @classmethod
+    def fit_starts(
+        cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
+    ) -> list[FitStart]:
+        """Three starts (alpha = 0.2, 0.5, 0.9) about the data's relaxed and unrelaxed stiffness."""
+        return _zener_starts(f, k, float(np.median(k.real)))
+
     def validate(self) -> None:
         """K_inf >= K0: a non-negative loss factor at every frequency."""
         if self.k_inf_n_per_m < self.k0_n_per_m:
@@ -100,6 +107,13 @@ class GeneralizedMaxwell(PadModel):
     k_inf_n_per_m: float = parameter("N/m", "equilibrium (zero-frequency) stiffness", gt=0.0)
     k_n_per_m: tuple[float, ...] = parameter("N/m", "branch stiffnesses K_i", ge=0.0)
     tau_s: tuple[float, ...] = parameter("s", "branch relaxation times tau_i", gt=0.0)
+
+    @classmethod
+    def fit_starts(
+        cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
+    ) -> list[FitStart]:
+        """One start: relaxation times log-uniform over the band widened by a decade each side."""
+        return _prony_starts(f, k, float(np.median(k.real)), n_terms)
 
     def validate(self) -> None:
         """One relaxation time per branch stiffness, at least one branch."""
@@ -150,70 +164,3 @@ def _prony_starts(
             lambda x: GeneralizedMaxwell(float(x[0] * ks), tuple(x[1:] * ks), tuple(tau)),
         )
     ]
-
-
-def _fit_starts_zener(
-    cls: type,
-    f: NDArray[np.float64],
-    k: NDArray[np.complex128],
-    *,
-    n_terms: int | None,
-    f0_hz: float,
-) -> list[FitStart]:
-    """Fit starts of :class:`FractionalZener` (see :meth:`PadModel.fit_starts`).
-
-    Parameters
-    ----------
-    cls : type
-        The model class (bound by ``classmethod``).
-    f : numpy.ndarray
-        Frequencies of the data in Hz, shape ``(n_freq,)``.
-    k : numpy.ndarray
-        Complex stiffness at `f` in N/m, shape ``(n_freq,)``.
-    n_terms : int, optional
-        Number of terms of a series model (unused here).
-    f0_hz : float
-        Reference frequency of power-law models in Hz (unused here).
-
-    Returns
-    -------
-    list of FitStart
-        Three starts, ``alpha = 0.2, 0.5, 0.9``, scaled by the median storage stiffness.
-    """
-    return _zener_starts(f, k, float(np.median(k.real)))
-
-
-def _fit_starts_prony(
-    cls: type,
-    f: NDArray[np.float64],
-    k: NDArray[np.complex128],
-    *,
-    n_terms: int | None,
-    f0_hz: float,
-) -> list[FitStart]:
-    """Fit starts of :class:`GeneralizedMaxwell` (see :meth:`PadModel.fit_starts`).
-
-    Parameters
-    ----------
-    cls : type
-        The model class (bound by ``classmethod``).
-    f : numpy.ndarray
-        Frequencies of the data in Hz, shape ``(n_freq,)``.
-    k : numpy.ndarray
-        Complex stiffness at `f` in N/m, shape ``(n_freq,)``.
-    n_terms : int, optional
-        Number of Maxwell branches; None picks about two per decade of the band widened
-        by a decade each side.
-    f0_hz : float
-        Reference frequency of power-law models in Hz (unused here).
-
-    Returns
-    -------
-    list of FitStart
-        One start, relaxation times log-uniform over the widened band.
-    """
-    return _prony_starts(f, k, float(np.median(k.real)), n_terms)
-
-
-FractionalZener.fit_starts = classmethod(_fit_starts_zener)  # type: ignore[method-assign,assignment]
-GeneralizedMaxwell.fit_starts = classmethod(_fit_starts_prony)  # type: ignore[method-assign,assignment]

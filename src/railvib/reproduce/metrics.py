@@ -16,6 +16,7 @@ import xarray as xr
 from scipy.ndimage import uniform_filter1d
 from scipy.signal import find_peaks
 
+from railvib.docstrings import fill_doc
 from railvib.results.stats import band_rms, dominant_frequency
 from railvib.results.stats import peak as _peak
 
@@ -42,17 +43,30 @@ Results = Mapping[str, xr.Dataset]
 Band = tuple[float, float]
 
 
+#: parameter documentation shared by the reading functions (:func:`railvib.docstrings.fill_doc`)
+_SHARED = {
+    "results": """results : mapping of str to xarray.Dataset
+    Study results: case key -> result dataset of :func:`railvib.run`.""",
+    "case": """case : str
+    Key of the case in `results`.""",
+    "cases2": """cases : sequence of str
+    The two case keys compared, ``(cases[0], cases[1])``.""",
+    "response": """response : str
+    Response label (a value of the ``response`` coordinate).""",
+    "band": """band : (float, float)
+    Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.""",
+}
+
+
+@fill_doc(_SHARED)
 def psd(results: Results, case: str, response: str) -> xr.DataArray:
     """Acceleration PSD of `response` in `case`, (m/s^2)^2/Hz against frequency (Hz).
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    case : str
-        Key of the case in `results`.
-    response : str
-        Response label (a value of the ``response`` coordinate).
+    {results}
+    {case}
+    {response}
 
     Returns
     -------
@@ -63,19 +77,16 @@ def psd(results: Results, case: str, response: str) -> xr.DataArray:
     return results[case]["psd_acceleration"].sel(response=response)
 
 
+@fill_doc(_SHARED)
 def peak(results: Results, case: str, response: str, band: Band) -> float:
     """Largest PSD value in `band` (Hz), m^2/s^4/Hz.
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    case : str
-        Key of the case in `results`.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {case}
+    {response}
+    {band}
 
     Returns
     -------
@@ -85,19 +96,16 @@ def peak(results: Results, case: str, response: str, band: Band) -> float:
     return float(_peak(psd(results, case, response), band))
 
 
+@fill_doc(_SHARED)
 def peak_frequency(results: Results, case: str, response: str, band: Band) -> float:
     """Frequency (Hz) of the largest PSD value in `band` (Hz).
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    case : str
-        Key of the case in `results`.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {case}
+    {response}
+    {band}
 
     Returns
     -------
@@ -107,6 +115,7 @@ def peak_frequency(results: Results, case: str, response: str, band: Band) -> fl
     return float(dominant_frequency(psd(results, case, response), band))
 
 
+@fill_doc(_SHARED)
 def peak_ratio(
     results: Results, cases: Sequence[str], response: str, band: Band, percent: bool = False
 ) -> float:
@@ -114,14 +123,10 @@ def peak_ratio(
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    cases : sequence of str
-        The two case keys compared, ``(cases[0], cases[1])``.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {cases2}
+    {response}
+    {band}
     percent : bool
         Return the ratio in percent.
 
@@ -134,19 +139,16 @@ def peak_ratio(
     return num / den * (100.0 if percent else 1.0)
 
 
+@fill_doc(_SHARED)
 def peak_difference(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
     """Absolute difference of the maxima in `band` of the two cases, m^2/s^4/Hz.
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    cases : sequence of str
-        The two case keys compared, ``(cases[0], cases[1])``.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {cases2}
+    {response}
+    {band}
 
     Returns
     -------
@@ -157,19 +159,16 @@ def peak_difference(results: Results, cases: Sequence[str], response: str, band:
     return abs(a - b)
 
 
+@fill_doc(_SHARED)
 def frequency_shift(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
     """Peak frequency of ``cases[0]`` minus that of ``cases[1]``, in `band`, Hz.
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    cases : sequence of str
-        The two case keys compared, ``(cases[0], cases[1])``.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {cases2}
+    {response}
+    {band}
 
     Returns
     -------
@@ -184,19 +183,16 @@ def _rms(results: Results, case: str, response: str, band: Band) -> float:
     return float(band_rms(psd(results, case, response), band))
 
 
+@fill_doc(_SHARED)
 def rms_ratio(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
     """RMS over `band` (Hz) of ``cases[0]`` divided by that of ``cases[1]``.
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    cases : sequence of str
-        The two case keys compared, ``(cases[0], cases[1])``.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {cases2}
+    {response}
+    {band}
 
     Returns
     -------
@@ -207,19 +203,17 @@ def rms_ratio(results: Results, cases: Sequence[str], response: str, band: Band)
     return num / den
 
 
+@fill_doc(_SHARED)
 def rms_spread(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
     """Spread of the RMS over `band` (Hz) among `cases`: ``100 (max / min - 1)``, in %.
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
+    {results}
     cases : sequence of str
         Keys of the cases compared.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {response}
+    {band}
 
     Returns
     -------
@@ -230,6 +224,7 @@ def rms_spread(results: Results, cases: Sequence[str], response: str, band: Band
     return 100.0 * (max(values) / min(values) - 1.0)
 
 
+@fill_doc(_SHARED)
 def crossover(results: Results, cases: Sequence[str], response: str, band: Band) -> float:
     """First frequency in `band` where ``cases[0]`` overtakes ``cases[1]``, Hz.
 
@@ -238,14 +233,10 @@ def crossover(results: Results, cases: Sequence[str], response: str, band: Band)
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    cases : sequence of str
-        The two case keys compared, ``(cases[0], cases[1])``.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {cases2}
+    {response}
+    {band}
 
     Returns
     -------
@@ -282,6 +273,7 @@ def comb_period_hz(ds: xr.Dataset) -> float:
     return float(ds.attrs["speed_m_per_s"]) / abs(float(x[0] - x[1]))
 
 
+@fill_doc(_SHARED)
 def comb_spacing(
     results: Results,
     case: str,
@@ -297,14 +289,10 @@ def comb_spacing(
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    case : str
-        Key of the case in `results`.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {case}
+    {response}
+    {band}
     prominence_decades : float
         Smallest prominence of a peak of ``log10 PSD``, in decades.
     min_distance_hz : float
@@ -328,6 +316,7 @@ def comb_spacing(
     return float((f[idx[-1]] - f[idx[0]]) / (idx.size - 1))
 
 
+@fill_doc(_SHARED)
 def envelope_peak_frequency(results: Results, case: str, response: str, band: Band) -> float:
     """Frequency (Hz) of the maximum of the PSD's overall trend in `band`.
 
@@ -336,14 +325,10 @@ def envelope_peak_frequency(results: Results, case: str, response: str, band: Ba
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
-    case : str
-        Key of the case in `results`.
-    response : str
-        Response label (a value of the ``response`` coordinate).
-    band : (float, float)
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive.
+    {results}
+    {case}
+    {response}
+    {band}
 
     Returns
     -------
@@ -358,19 +343,18 @@ def envelope_peak_frequency(results: Results, case: str, response: str, band: Ba
     return float(f[int(np.argmax(trend))])
 
 
+@fill_doc(_SHARED)
 def headline_ratio(results: Results, reference: str, cases: Sequence[str], response: str) -> float:
     """Largest whole-grid peak among `cases` divided by the `reference` case's peak.
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
+    {results}
     reference : str
         Key of the reference case.
     cases : sequence of str
         Keys of the cases compared.
-    response : str
-        Response label (a value of the ``response`` coordinate).
+    {response}
 
     Returns
     -------
@@ -383,19 +367,18 @@ def headline_ratio(results: Results, reference: str, cases: Sequence[str], respo
     )
 
 
+@fill_doc(_SHARED)
 def headline_shift(results: Results, reference: str, cases: Sequence[str], response: str) -> float:
     """Largest whole-grid dominant frequency among `cases` minus the `reference`'s, Hz.
 
     Parameters
     ----------
-    results : mapping of str to xarray.Dataset
-        Study results: case key -> result dataset of :func:`railvib.run`.
+    {results}
     reference : str
         Key of the reference case.
     cases : sequence of str
         Keys of the cases compared.
-    response : str
-        Response label (a value of the ``response`` coordinate).
+    {response}
 
     Returns
     -------

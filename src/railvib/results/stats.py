@@ -8,18 +8,27 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import trapezoid
 
+from railvib.docstrings import fill_doc
+
 __all__ = ["band_rms", "dominant_frequency", "peak", "summary", "summary_attrs", "summary_names"]
 
+#: parameter documentation shared by the statistics (:func:`railvib.docstrings.fill_doc`)
+_SHARED = {
+    "psd": """psd : xarray.DataArray
+    One-sided PSD per Hz (e.g. (m/s^2)^2/Hz) with a ``frequency`` dimension in Hz.""",
+    "band": """band : (float, float), optional
+    Frequency band ``(f_lo, f_hi)`` in Hz, inclusive; None: the whole grid.""",
+}
 
+
+@fill_doc(_SHARED)
 def peak(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataArray:
     """Largest PSD value over `band` (Hz, inclusive; whole grid if None).
 
     Parameters
     ----------
-    psd : xarray.DataArray
-        One-sided PSD per Hz (e.g. (m/s^2)^2/Hz) with a ``frequency`` dimension in Hz.
-    band : (float, float), optional
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive; None: the whole grid.
+    {psd}
+    {band}
 
     Returns
     -------
@@ -34,15 +43,14 @@ def peak(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataA
     return _in_band(psd, band).max("frequency")
 
 
+@fill_doc(_SHARED)
 def dominant_frequency(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataArray:
     """Frequency (Hz) of the largest PSD value over `band`.
 
     Parameters
     ----------
-    psd : xarray.DataArray
-        One-sided PSD per Hz (e.g. (m/s^2)^2/Hz) with a ``frequency`` dimension in Hz.
-    band : (float, float), optional
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive; None: the whole grid.
+    {psd}
+    {band}
 
     Returns
     -------
@@ -58,15 +66,14 @@ def dominant_frequency(psd: xr.DataArray, band: tuple[float, float] | None = Non
     return sel["frequency"][sel.argmax("frequency")].drop_vars("frequency", errors="ignore")
 
 
+@fill_doc(_SHARED)
 def band_rms(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.DataArray:
     """RMS = sqrt(integral of the one-sided PSD over `band`), trapezoidal rule on the grid.
 
     Parameters
     ----------
-    psd : xarray.DataArray
-        One-sided PSD per Hz (e.g. (m/s^2)^2/Hz) with a ``frequency`` dimension in Hz.
-    band : (float, float), optional
-        Frequency band ``(f_lo, f_hi)`` in Hz, inclusive; None: the whole grid.
+    {psd}
+    {band}
 
     Returns
     -------

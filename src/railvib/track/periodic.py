@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.docstrings import fill_doc
 from railvib.errors import CaseError, SolverWarning
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_parameters, parameter
@@ -33,6 +34,13 @@ from railvib.track.beam import (
 )
 
 __all__ = ["PeriodicTrack", "Rail", "TrackWaves"]
+
+#: parameter documentation shared by the track methods (:func:`railvib.docstrings.fill_doc`)
+_SHARED = {
+    "f": """f : array_like
+    Frequencies in Hz (> 0), shape ``(n_freq,)``.""",
+}
+
 
 #: wave-matching condition number above which results are flagged with a SolverWarning
 CONDITION_WARNING = 1e7
@@ -183,6 +191,7 @@ class PeriodicTrack(TrackModel):
             z * self.sleeper_spacing**3 / self.rail.complex_bending_stiffness, dtype=np.complex128
         )
 
+    @fill_doc(_SHARED)
     def span_transfer(self, f: ArrayLike, length: float) -> NDArray[np.complex128]:
         """Dimensionless transfer matrix of the rail over `length` bays, ``(n_freq, 4, 4)``.
 
@@ -192,8 +201,7 @@ class PeriodicTrack(TrackModel):
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+        {f}
         length : float
             Span length in bays, i.e. in units of the sleeper spacing d (dimensionless).
 
@@ -211,6 +219,7 @@ class PeriodicTrack(TrackModel):
         rotary = self.rail.rotary_inertia * (2.0 * np.pi * f) ** 2 * d**2 / ei
         return timoshenko_transfer(self._beta4(f), ei / (kga * d**2), rotary, length)
 
+    @fill_doc(_SHARED)
     def cell_transfer(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Dimensionless field transfer matrix of one bay, ``(n_freq, 4, 4)``.
 
@@ -219,8 +228,7 @@ class PeriodicTrack(TrackModel):
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+        {f}
 
         Returns
         -------
@@ -335,6 +343,7 @@ class PeriodicTrack(TrackModel):
             return self.span_transfer(w.f, length)[:, :, 3]
         return np.stack(krylov_series(w.beta4, length)[::-1], axis=-1)
 
+    @fill_doc(_SHARED)
     def transfer_matrix(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Transfer matrix S of one bay in the paper's state ``(u, p)``, SI units.
 
@@ -344,8 +353,7 @@ class PeriodicTrack(TrackModel):
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+        {f}
 
         Returns
         -------
@@ -356,6 +364,7 @@ class PeriodicTrack(TrackModel):
         c, c_inv = self._state_maps()
         return c @ self.cell_transfer(f) @ c_inv
 
+    @fill_doc(_SHARED)
     def cell_dynamic_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Dynamic stiffness of one bay, ``(n_freq, 4, 4)``, DOFs ``(w_a, theta_a, w_b, theta_b)``.
 
@@ -367,8 +376,7 @@ class PeriodicTrack(TrackModel):
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+        {f}
 
         Returns
         -------
@@ -394,6 +402,7 @@ class PeriodicTrack(TrackModel):
         k[:, 2, 2] += self.pad.stiffness(f, self.pad_temperature)
         return k
 
+    @fill_doc(_SHARED)
     def semi_infinite_stiffness(
         self, f: ArrayLike
     ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
@@ -401,8 +410,7 @@ class PeriodicTrack(TrackModel):
 
         Parameters
         ----------
-        f : array_like
-            Frequencies in Hz (> 0), shape ``(n_freq,)``.
+        {f}
 
         Returns
         -------
