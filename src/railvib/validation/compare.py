@@ -23,13 +23,11 @@ from railvib.coupling import CoupledSystem
 from railvib.response import FRF
 from railvib.results.variables import VARIABLES, compute_variables
 from railvib.spectra.base import SpatialSpectrum
-from railvib.track.periodic import PeriodicTrack
 from railvib.validation._legacy import bundle_form
 from railvib.validation.coupled import FiniteCoupledSystem
 from railvib.validation.monte_carlo import MonteCarloResult, monte_carlo
 from railvib.validation.result import ValidationResult, ValidationSettings
 from railvib.validation.statistics import welch_expectation
-from railvib.vehicle.assembly import Vehicle
 
 __all__ = ["validate_case"]
 
@@ -41,21 +39,10 @@ _DIMS = ("frequency", "response")
 _PsdFunction = Callable[[NDArray[np.float64]], NDArray[np.float64]]
 
 
-def _validate_case_bundle(
-    vehicle: Vehicle,
-    track: PeriodicTrack,
-    contact_stiffness: float,
-    leading_wheel_position: float,
-    speed: float,
-    spectrum: SpatialSpectrum,
-    *,
-    settings: ValidationSettings | None = None,
-    seed: int = 0,
-    progress: Callable[[int], None] | None = None,
-) -> ValidationResult:
+def _validate_case_bundle(*bundle: Any, **options: Any) -> ValidationResult:
     """The deprecated form ``validate_case(vehicle, track, k_H, x0, v, spectrum, ...)``."""
-    system = CoupledSystem(vehicle, track, contact_stiffness, leading_wheel_position, speed)
-    return validate_case(system, spectrum, settings=settings, seed=seed, progress=progress)
+    *system, spectrum = bundle
+    return validate_case(CoupledSystem(*system), spectrum, **options)
 
 
 @bundle_form(

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -120,77 +121,18 @@ class FiniteCoupledSystem:
         )
 
     @classmethod
-    def build(
-        cls,
-        vehicle: Vehicle,
-        rail: Rail,
-        pad: PadModel,
-        sleeper_spacing: float,
-        contact_stiffness: float,
-        leading_wheel_position: float,
-        speed: float,
-        *,
-        margin_spans: int = 60,
-        elements_per_span: int = 8,
-        absorber_spans: int = 0,
-        absorber_damping: float = 0.0,
-        pad_temperature: float | None = None,
-    ) -> FiniteCoupledSystem:
-        """Build the finite track around the wheels and couple the vehicle to it.
+    def build(cls, *bundle: Any, **mesh: Any) -> FiniteCoupledSystem:
+        """Deprecated: use :meth:`from_system` with a :class:`~railvib.coupling.CoupledSystem`.
 
-        .. deprecated::
-            Use :meth:`from_system` with a :class:`~railvib.coupling.CoupledSystem`
-            (the same system description as the symplectic path).
-
-        Parameters
-        ----------
-        vehicle : Vehicle
-            Pitch-plane vehicle, wheels front to back.
-        rail : Rail
-            Rail beam (EI in N m^2, m in kg/m); Euler-Bernoulli only.
-        pad : PadModel
-            Railpad, complex stiffness per rail seat in N/m.
-        sleeper_spacing : float
-            Sleeper spacing d in m (> 0).
-        contact_stiffness : float
-            Linear Hertz stiffness k_H per contact, N/m (> 0).
-        leading_wheel_position : float
-            Position of the leading wheel along the rail, m (sleepers at ``n d``).
-        speed : float
-            Speed at which the irregularity passes, m/s (> 0).
-        margin_spans : int
-            Bays of finite track beyond the outermost wheels on each side.
-        elements_per_span : int
-            Hermite elements per bay (8: 1.7e-5 relative receptance error at 1 kHz).
-        absorber_spans : int
-            Bays with graded extra pad damping at each end, inside the margins.
-        absorber_damping : float
-            Extra pad damping at the outermost sleepers, N s/m (>= 0).
-        pad_temperature : float, optional
-            Pad temperature in degrees Celsius (degC), passed to the pad model.
-
-        Returns
-        -------
-        FiniteCoupledSystem
+        The old form ``build(vehicle, rail, pad, sleeper_spacing, contact_stiffness,
+        leading_wheel_position, speed, *, margin_spans=60, elements_per_span=8,
+        absorber_spans=0, absorber_damping=0.0, pad_temperature=None)``, unchanged.
         """
         warn_deprecated(
             "FiniteCoupledSystem.build(vehicle, rail, pad, sleeper_spacing, ...)",
             f"FiniteCoupledSystem.from_system(system, ...) with {SYSTEM_FROM_BUNDLE}",
         )
-        return _finite_system(
-            vehicle,
-            rail,
-            pad,
-            sleeper_spacing,
-            contact_stiffness,
-            leading_wheel_position,
-            speed,
-            margin_spans=margin_spans,
-            elements_per_span=elements_per_span,
-            absorber_spans=absorber_spans,
-            absorber_damping=absorber_damping,
-            pad_temperature=pad_temperature,
-        )
+        return _finite_system(*bundle, **mesh)
 
     @property
     def wheel_positions(self) -> NDArray[np.float64]:
@@ -304,11 +246,11 @@ def _finite_system(
     leading_wheel_position: float,
     speed: float,
     *,
-    margin_spans: int,
-    elements_per_span: int,
-    absorber_spans: int,
-    absorber_damping: float,
-    pad_temperature: float | None,
+    margin_spans: int = 60,
+    elements_per_span: int = 8,
+    absorber_spans: int = 0,
+    absorber_damping: float = 0.0,
+    pad_temperature: float | None = None,
 ) -> FiniteCoupledSystem:
     """The finite track around the wheels with the vehicle coupled to it (no warning)."""
     x = leading_wheel_position - vehicle.wheel_offsets
@@ -326,36 +268,10 @@ def _finite_system(
     return FiniteCoupledSystem(vehicle, track, contact_stiffness, leading_wheel_position, speed)
 
 
-def _finite_track_frf_bundle(
-    vehicle: Vehicle,
-    rail: Rail,
-    pad: PadModel,
-    sleeper_spacing: float,
-    contact_stiffness: float,
-    leading_wheel_position: float,
-    speed: float,
-    f: ArrayLike,
-    *,
-    margin_spans: int = 60,
-    elements_per_span: int = 8,
-    pad_temperature: float | None = None,
-) -> FRF:
+def _finite_track_frf_bundle(*bundle: Any, **options: Any) -> FRF:
     """The deprecated form ``finite_track_frf(vehicle, rail, pad, d, k_H, x0, v, f, ...)``."""
-    system = _finite_system(
-        vehicle,
-        rail,
-        pad,
-        sleeper_spacing,
-        contact_stiffness,
-        leading_wheel_position,
-        speed,
-        margin_spans=margin_spans,
-        elements_per_span=elements_per_span,
-        absorber_spans=0,
-        absorber_damping=0.0,
-        pad_temperature=pad_temperature,
-    )
-    return system.frf(f)
+    *system, f = bundle
+    return _finite_system(*system, **options).frf(f)
 
 
 @bundle_form(

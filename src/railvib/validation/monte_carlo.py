@@ -4,20 +4,18 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from railvib.coupling import CoupledSystem  # the system description only, not its solver
 from railvib.errors import CaseError
-from railvib.pads.base import PadModel
 from railvib.spectra.base import SpatialSpectrum
-from railvib.track.periodic import Rail  # the parameter record only, not the solver
 from railvib.validation._legacy import SYSTEM_FROM_BUNDLE, bundle_form
 from railvib.validation.coupled import FiniteCoupledSystem, _finite_system
 from railvib.validation.samples import wheel_irregularities
 from railvib.validation.statistics import WelchEstimate, welch_psd
 from railvib.validation.time_domain import output_dofs, simulate_time_domain
-from railvib.vehicle.assembly import Vehicle
 
 __all__ = ["MonteCarloResult", "MonteCarloSettings", "monte_carlo"]
 
@@ -116,35 +114,21 @@ class MonteCarloResult:
 
 
 def _monte_carlo_bundle(
-    vehicle: Vehicle,
-    rail: Rail,
-    pad: PadModel,
-    sleeper_spacing: float,
-    contact_stiffness: float,
-    leading_wheel_position: float,
-    speed: float,
-    spectrum: SpatialSpectrum,
-    *,
+    *bundle: Any,
     settings: MonteCarloSettings | None = None,
     seed: int = 0,
     progress: Callable[[int], None] | None = None,
 ) -> MonteCarloResult:
     """The deprecated form ``monte_carlo(vehicle, rail, pad, d, k_H, x0, v, spectrum, ...)``."""
+    *system_bundle, spectrum = bundle
     s = settings if settings is not None else MonteCarloSettings()
-    system = _finite_system(
-        vehicle,
-        rail,
-        pad,
-        sleeper_spacing,
-        contact_stiffness,
-        leading_wheel_position,
-        speed,
-        margin_spans=s.margin_spans,
-        elements_per_span=s.elements_per_span,
-        absorber_spans=s.absorber_spans,
-        absorber_damping=s.absorber_damping,
-        pad_temperature=None,
-    )
+    mesh: dict[str, Any] = {
+        "margin_spans": s.margin_spans,
+        "elements_per_span": s.elements_per_span,
+        "absorber_spans": s.absorber_spans,
+        "absorber_damping": s.absorber_damping,
+    }
+    system = _finite_system(*system_bundle, **mesh)
     return _run_monte_carlo(system, spectrum, s, seed, progress)
 
 
