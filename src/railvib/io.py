@@ -11,17 +11,27 @@ from __future__ import annotations
 
 import os
 import tempfile
+import tomllib
 from collections.abc import Iterator
 from contextlib import contextmanager
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+from railvib.errors import CaseError
 
 if TYPE_CHECKING:  # matplotlib is imported only by code that draws
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["FIGURE_DPI", "atomic_path", "railvib_version", "save_figure", "write_text"]
+__all__ = [
+    "FIGURE_DPI",
+    "atomic_path",
+    "railvib_version",
+    "read_toml",
+    "save_figure",
+    "write_text",
+]
 
 #: resolution of every PNG railvib writes, dots per inch
 FIGURE_DPI = 110
@@ -62,6 +72,36 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def read_toml(path: str | Path, field: str) -> dict[str, Any]:
+    """Parse the TOML file `path`; an unreadable or invalid file is a one-line error.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    field : str
+        What the file is (``"case"``, ``"sweep"``), named in the error.
+
+    Returns
+    -------
+    dict
+        The parsed tables.
+
+    Raises
+    ------
+    CaseError
+        ``<field> = '<path>': a readable TOML file (...)`` or ``valid TOML (...)``.
+    """
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise CaseError(field, str(path), f"a readable TOML file ({exc.strerror})") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(field, str(path), f"valid TOML ({exc})") from None
 
 
 def write_text(path: str | Path, text: str) -> Path:

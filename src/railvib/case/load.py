@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import copy
-import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -13,6 +12,7 @@ from railvib.case.build import build_grid, build_pad
 from railvib.case.errors import case_error
 from railvib.case.schema import FAMILY_TABLES, Case
 from railvib.errors import CaseError
+from railvib.io import read_toml
 from railvib.presets import load_preset
 from railvib.registry import merge_tables, resolve_paths
 
@@ -42,15 +42,7 @@ def load_case(path: str | Path) -> Case:
         With the dotted field name, the value and what is allowed.
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise CaseError("case", str(path), f"a readable TOML file ({exc.strerror})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError("case", str(path), f"valid TOML ({exc})") from None
-    return case_from_dict(data, base_dir=path.parent)
+    return case_from_dict(read_toml(path, "case"), base_dir=path.parent)
 
 
 def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> Case:

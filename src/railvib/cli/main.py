@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from railvib.cli.options import output_option
 from railvib.errors import RailvibError
 
 __all__ = ["cli", "main"]
@@ -27,15 +28,7 @@ def cli() -> None:
 
 @cli.command()
 @click.argument("case_file", type=click.Path(dir_okay=False, path_type=Path))
-@click.option(
-    "-o",
-    "--output",
-    "outdir",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=Path("railvib-out"),
-    show_default=True,
-    help="output folder",
-)
+@output_option(Path("railvib-out"))
 @click.option("--no-plots", is_flag=True, help="skip the PNG figures")
 def run(case_file: Path, outdir: Path, no_plots: bool) -> None:
     """Run CASE_FILE and write the dataset, summary and PSD plots to OUTPUT."""

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import click
 
+from railvib.cli.options import output_option
 from railvib.errors import CaseError
 from railvib.padfit import PadFitJob, fit_pad_to_folder
 from railvib.pads import fittable_models
@@ -33,15 +34,7 @@ def pad() -> None:
     show_default=True,
     help=f"pad model: {', '.join(fittable_models())} (aliases zener, prony)",
 )
-@click.option(
-    "-o",
-    "--output",
-    "outdir",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=Path("pad-fit"),
-    show_default=True,
-    help="output folder",
-)
+@output_option(Path("pad-fit"))
 @click.option(
     "--reference-temperature",
     "t_ref",

@@ -6,19 +6,13 @@ from pathlib import Path
 
 import click
 
+from railvib.cli.options import output_option
+
 __all__ = ["reproduce"]
 
 
 @click.command(short_help="The paper's study: Figs. 8-16, its numbers beside ours, HTML report.")
-@click.option(
-    "-o",
-    "--output",
-    "outdir",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=Path("railvib-reproduce"),
-    show_default=True,
-    help="output folder",
-)
+@output_option(Path("railvib-reproduce"))
 @click.option("--quiet", is_flag=True, help="no progress bar, no summary")
 def reproduce(outdir: Path, quiet: bool) -> None:
     """Reproduce Wang et al. 2017 (Figs. 8-16 and every number it states).

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import click
 
+from railvib.cli.options import output_option
+
 __all__ = ["plot", "sweep"]
 
 
@@ -36,14 +38,7 @@ def sweep() -> None:
 
 @sweep.command("run")
 @click.argument("sweep_file", type=click.Path(dir_okay=False, path_type=Path))
-@click.option(
-    "-o",
-    "--output",
-    "outdir",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=None,
-    help="output folder [default: <SWEEP_FILE stem>.sweep]",
-)
+@output_option(None, "output folder [default: <SWEEP_FILE stem>.sweep]")
 @click.option(
     "-j",
     "--workers",
@@ -131,14 +126,7 @@ def run_command(
 )
 @click.option("--x", "x", default=None, help="sweep dimension on the horizontal axis")
 @click.option("--y", "y", default=None, help="sweep dimension for a heat map")
-@click.option(
-    "-o",
-    "--output",
-    "outdir",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=None,
-    help="folder for the PNGs [default: RESULT/plots or next to it]",
-)
+@output_option(None, "folder for the PNGs [default: RESULT/plots or next to it]")
 def plot(
     result: Path,
     variables: tuple[str, ...],

@@ -36,7 +36,6 @@ import copy
 import dataclasses
 import json
 import math
-import tomllib
 from collections.abc import Iterator, Mapping, Sequence
 from numbers import Integral
 from pathlib import Path
@@ -48,6 +47,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_dicts
 from railvib.case.errors import case_error
 from railvib.errors import CaseError
+from railvib.io import read_toml
 from railvib.presets import load_preset
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
 
@@ -478,13 +478,7 @@ def load_sweep(path: str | Path) -> SweepSpec:
         With the dotted field name, the value and what is allowed.
     """
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise CaseError("sweep", str(path), f"a readable TOML file ({exc.strerror})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError("sweep", str(path), f"valid TOML ({exc})") from None
-    return sweep_from_dict(data, base_dir=path.parent)
+    return sweep_from_dict(read_toml(path, "sweep"), base_dir=path.parent)
 
 
 def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> SweepSpec:
