@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,6 +22,13 @@ def _scales(f: NDArray[np.float64], k: NDArray[np.complex128]) -> tuple[float, f
     ks = float(np.median(k.real))
     wm = 2 * np.pi * float(np.exp(np.mean(np.log(f))))
     return ks, wm, float(np.median(k.imag / k.real))
+
+
+def _stiffness_and_loss_start(
+    eta: float, build: Callable[[NDArray[np.float64]], PadModel]
+) -> list[FitStart]:
+    """One start ``[1, eta]`` (stiffness scaled by the data's median, loss), both >= 0."""
+    return [FitStart([1.0, eta], [1e-9, 0.0], [np.inf, np.inf], build)]
 
 
 def _power_law_start(
@@ -62,14 +70,9 @@ class SpringDamper(PadModel):
     ) -> list[FitStart]:
         """Start at the median stiffness and loss factor of the data."""
         ks, wm, eta = _scales(f, k)
-        return [
-            FitStart(
-                [1.0, eta],
-                [1e-9, 0.0],
-                [np.inf, np.inf],
-                lambda x: SpringDamper(float(x[0] * ks), float(x[1] * ks / wm)),
-            )
-        ]
+        return _stiffness_and_loss_start(
+            eta, lambda x: SpringDamper(float(x[0] * ks), float(x[1] * ks / wm))
+        )
 
 
 @PADS.register("hysteretic")
@@ -107,14 +110,7 @@ class Hysteretic(PadModel):
     ) -> list[FitStart]:
         """Start at the median stiffness and loss factor of the data."""
         ks, _, eta = _scales(f, k)
-        return [
-            FitStart(
-                [1.0, eta],
-                [1e-9, 0.0],
-                [np.inf, np.inf],
-                lambda x: Hysteretic(float(x[0] * ks), float(x[1])),
-            )
-        ]
+        return _stiffness_and_loss_start(eta, lambda x: Hysteretic(float(x[0] * ks), float(x[1])))
 
 
 @PADS.register("log_linear")

@@ -169,20 +169,7 @@ def load_sweep_dataset(path: str | Path) -> xr.Dataset:
 
 
 def save_sweep_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write the sweep dataset to netCDF-4 atomically.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        The sweep dataset (:func:`sweep_dataset`).
-    path : str or pathlib.Path
-        The netCDF file.
-
-    Returns
-    -------
-    pathlib.Path
-        `path`.
-    """
+    """Write the sweep dataset `ds` to the netCDF file `path` (:func:`railvib.save_netcdf`)."""
     return save_netcdf(ds, path)
 
 
