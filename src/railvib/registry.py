@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import functools
 import math
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -250,8 +251,9 @@ def parameter(
     return dataclasses.field(default=default, metadata=metadata)
 
 
+@functools.cache
 def declared_parameters(cls: type) -> tuple[Parameter, ...]:
-    """The parameters declared on the dataclass fields of `cls`, in field order."""
+    """The parameters declared on the dataclass fields of `cls`, in field order (cached)."""
     out = []
     for f in dataclasses.fields(cls):
         spec = f.metadata.get("railvib")

@@ -41,6 +41,7 @@ def _public_functions():
         module = importlib.import_module(info.name)
         for name in getattr(module, "__all__", []):
             obj = getattr(module, name, None)
+            obj = inspect.unwrap(obj) if callable(obj) and hasattr(obj, "__wrapped__") else obj
             targets = []
             if inspect.isfunction(obj):
                 targets.append((f"{obj.__module__}.{obj.__qualname__}", obj))

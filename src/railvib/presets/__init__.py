@@ -6,6 +6,7 @@ names one with ``preset = "<name>"`` and overrides any field.
 
 from __future__ import annotations
 
+import functools
 import tomllib
 from importlib import resources
 from typing import Any
@@ -28,6 +29,7 @@ def list_presets() -> list[str]:
     return sorted(p.name[:-5] for p in _case_dir().iterdir() if p.name.endswith(".toml"))
 
 
+@functools.cache
 def preset_text(name: str) -> str:
     """The TOML text of preset `name`, comments included."""
     names = list_presets()
