@@ -1,6 +1,6 @@
 """Master curves from measurements, WLF fitting and pad-model fitting (scipy least_squares).
 
-The chain (``shared/physics.md`` section 5.1): remove the vertical factor, shift each
+The chain (the paper's section 3.2, Eqs. 20-26): remove the vertical factor, shift each
 temperature horizontally by ``log10 a_T`` (given WLF constants, or free shifts fitted
 by superposing overlapping segments and then fitted with WLF), then fit a pad model
 to ``K'`` and ``K''`` of the master curve together by least squares.

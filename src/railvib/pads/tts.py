@@ -7,7 +7,7 @@ absolute temperatures).
 References
 ----------
 Seed paper, section 3.2.1, Eqs. 20-26 (Eq. 20/21 and Eq. 23 as corrected in
-``shared/physics.md`` section 3.6) and Williams, Landel & Ferry, *J. Am. Chem. Soc.*
+``docs/paper-interpretation.md``) and Williams, Landel & Ferry, *J. Am. Chem. Soc.*
 77:3701 (1955).
 """
 

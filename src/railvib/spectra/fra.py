@@ -13,7 +13,7 @@ from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
 __all__ = ["FRAClass"]
 
-#: A_v of classes 1..6 in cm^2 rad/m (physics.md section 1.2). Class 6 is the best track.
+#: A_v of classes 1..6 in cm^2 rad/m (docs/spectra.md). Class 6 is the best track.
 FRA_A_V_CM2_RAD_PER_M: dict[int, float] = {
     1: 1.2107,
     2: 1.0181,

@@ -15,7 +15,7 @@ __all__ = ["GermanVertical"]
 
 GERMAN_OMEGA_C_RAD_PER_M = 0.8246
 GERMAN_OMEGA_R_RAD_PER_M = 0.0206
-#: A_v in m^2 rad/m (physics.md section 1.4).
+#: A_v in m^2 rad/m (docs/spectra.md).
 GERMAN_A_V_M2_RAD_PER_M: dict[str, float] = {"low": 4.032e-7, "high": 1.080e-6}
 
 

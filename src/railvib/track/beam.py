@@ -8,7 +8,7 @@ Two exact descriptions of a uniform beam span are provided:
   whose terms are all of one sign for an undamped beam, so no digits are lost
   at low frequency and no branch of a fourth root has to be chosen.
 * :func:`dynamic_stiffness` -- the exact 4x4 dynamic stiffness of a span
-  (physics.md §3.1), which has poles at the clamped-clamped natural frequencies.
+  (docs/design/0002-track-solver.md), which has poles at the clamped-clamped natural frequencies.
   It is used to state the paper's symplectic formulation (cell stiffness ->
   transfer matrix, Eqs. 3-4) and in tests; the solver itself uses the pole-free
   transfer matrix.
@@ -105,7 +105,7 @@ def dynamic_stiffness(beta4: ArrayLike, length: float) -> NDArray[np.complex128]
     """Exact dynamic stiffness of a uniform beam span, ``(n_freq, 4, 4)``, units of EI* = 1.
 
     DOFs ``(w1, theta1, w2, theta2)`` with dimensionless lengths; end forces
-    ``(V1, M1, V2, M2)`` acting on the span. Formula of physics.md §3.1 with
+    ``(V1, M1, V2, M2)`` acting on the span. Closed form (docs/design/0002-track-solver.md) with
     ``D = 1 - cos(bL) cosh(bL)``; singular where ``D = 0`` (clamped-clamped
     natural frequencies). Uses the closed form, so only for ``|b L| >~ 1e-2``.
 

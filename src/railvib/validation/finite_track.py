@@ -10,7 +10,7 @@ sleeper node, rigid below. The rail ends are free, just beyond the outermost
 sleepers; optional absorbing layers of graded extra pad damping near both ends
 swallow the waves that reach them.
 
-Accuracy of the Hermite element for the seed track (physics.md section 3.1,
+Accuracy of the Hermite element for the seed track (docs/validation.md,
 infinite-track point receptance): relative error 1.9e-4 at 1 kHz with 4
 elements per 0.6 m bay, 1.2e-5 with 8. The default for the frequency-domain
 reference is 8 elements per bay; the time-domain model (band 1-500 Hz) uses 4.

@@ -6,7 +6,7 @@ Run ``python make_wj7_synthetic.py`` here to rewrite the two CSV files. See READ
    Tg = -40 degC (C1 = 17.44, C2 = 51.6 K; seed section 3.2.1) and the seed's vertical
    factor (a_f = 4.8e-4 /K) is calibrated by least squares to the facts the seed
    states for WJ-7: K'(5 Hz) = 31.0, 45.2 and 70.8 kN/mm at +20, -10 and -30 degC
-   (the physical pairing of shared/physics.md section 7, item 4), log-log slope 0.07
+   (the physical pairing of docs/paper-interpretation.md), log-log slope 0.07
    over 5-1000 Hz at those temperatures, and the loss-factor peak of the 0.3 Hz
    temperature sweep at Tg = -40 degC.
 2. That model is sampled at the seed's protocol (0.3 Hz, -60 to +20 degC every
