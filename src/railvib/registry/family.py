@@ -47,10 +47,6 @@ class Member(Generic[T]):
         """First line of the class docstring."""
         return (self.cls.__doc__ or "").strip().splitlines()[0] if self.cls.__doc__ else ""
 
-    def parameter(self, key: str) -> Parameter:
-        """The declaration of `key`."""
-        return next(p for p in self.parameters if p.key == key)
-
 
 #: extra table of a family (e.g. ``tts`` of a pad): (declarations, wrap(member, table, field))
 ExtraTable = tuple[tuple[Parameter, ...], Callable[[Any, Mapping[str, Any], str], Any]]
@@ -159,10 +155,6 @@ class Registry(Generic[T]):
     def aliases_mapping(self) -> Mapping[str, str]:
         """A live, read-only view ``alias -> member name``."""
         return _LiveView(self._aliases)
-
-    def aliases(self) -> dict[str, str]:
-        """Alias -> member name."""
-        return dict(self._aliases)
 
     def __iter__(self) -> Iterator[Member[T]]:
         return iter(list(self._members.values()))
