@@ -36,6 +36,7 @@ import copy
 import dataclasses
 import json
 import math
+import warnings
 from collections.abc import Iterator, Mapping, Sequence
 from numbers import Integral
 from pathlib import Path
@@ -46,7 +47,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_dicts
 from railvib.case.errors import case_error
-from railvib.errors import CaseError
+from railvib.errors import CaseError, RailvibDeprecationWarning
 from railvib.io import read_toml
 from railvib.presets import load_preset
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
@@ -396,6 +397,22 @@ class SweepSpec:
         """Return the base case as a plain, mutable deep copy (a case dict)."""
         out: dict[str, Any] = _thaw(self.base_case)
         return out
+
+    def __getitem__(self, key: str) -> Any:
+        """Deprecated dict-style access (``spec["axes"]``): use the attributes or :meth:`as_dict`.
+
+        Parameters
+        ----------
+        key : str
+            A key of :meth:`as_dict`.
+        """
+        warnings.warn(
+            f'spec["{key}"] is deprecated: the sweep spec is a SweepSpec; use its attributes '
+            f"(spec.{key}) or spec.as_dict()",
+            RailvibDeprecationWarning,
+            stacklevel=2,
+        )
+        return self.as_dict()[key]
 
     def as_dict(self) -> dict[str, Any]:
         """Return the sweep as a plain JSON-able dict (what older railvib versions passed around).

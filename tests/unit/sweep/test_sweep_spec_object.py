@@ -212,3 +212,14 @@ def test_module_docstring_example():
     failures, tried = doctest.testmod(railvib.sweep, verbose=False)
     assert tried > 0
     assert failures == 0
+
+
+def test_dict_style_access_is_deprecated_but_works():
+    from railvib.errors import RailvibDeprecationWarning
+    from railvib.sweep import sweep_from_dict
+    from tests.unit.sweep.sweep_cases import small_sweep
+
+    spec = sweep_from_dict(small_sweep())
+    with pytest.warns(RailvibDeprecationWarning, match=r"spec\.base_case"):
+        bands = spec["base_case"]["output"]["rms_bands"]
+    assert [tuple(b) for b in bands] == [tuple(b) for b in spec.rms_bands]
