@@ -8,11 +8,29 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["CaseError", "RailvibDeprecationWarning", "RailvibError", "SolverWarning"]
+__all__ = [
+    "CaseError",
+    "LinearModelInvalid",
+    "RailvibDeprecationWarning",
+    "RailvibError",
+    "SolverWarning",
+]
 
 
 class RailvibError(Exception):
     """Base class of every railvib error."""
+
+    #: exit code of the command line when this error ends a command
+    exit_code: int = 2
+
+
+class LinearModelInvalid(RailvibError):
+    """A result lies beyond the linear model (``--strict``): loss of contact above the threshold.
+
+    The results are written all the same; the command line exits with code 3.
+    """
+
+    exit_code = 3
 
 
 class CaseError(RailvibError, ValueError):
