@@ -11,6 +11,7 @@ from typing import Any
 __all__ = [
     "CaseError",
     "LinearModelInvalid",
+    "PlausibilityWarning",
     "RailvibDeprecationWarning",
     "RailvibError",
     "SolverWarning",
@@ -51,6 +52,34 @@ class CaseError(RailvibError, ValueError):
         self.value = value
         self.allowed = allowed
         super().__init__(f"{field} = {value!r}: {allowed}")
+
+
+class PlausibilityWarning(UserWarning):
+    """Legal but suspicious input (a likely unit slip or typo): names the field and the value.
+
+    The case is run as given; the message says why the value looks wrong, on one line
+    (``field = value: why (unit)``), and the CLI prints it as ``warning: <message>``.
+    Escalate it with ``-W error::railvib.errors.PlausibilityWarning`` to refuse such
+    cases, or filter it to silence it.
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the field, e.g. ``"speed_kmh"``.
+    value : Any
+        The value received (or, for a derived quantity, a text naming it).
+    note : str
+        Why the value is suspicious, with units, e.g. ``"above 450 km/h, ..."``.
+    """
+
+    def __init__(self, field: str, value: Any, note: str) -> None:
+        self.field = field
+        self.value = value
+        self.note = note
+        super().__init__(f"{field} = {value!r}: {note}")
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.field, self.value, self.note))
 
 
 class SolverWarning(RuntimeWarning):

@@ -82,11 +82,37 @@ class FrequencyGrid:
         CaseError
             If the band or the step is not valid.
         """
+        n = cls.linear_size(f_min, f_max, step)
+        return cls(np.asarray(f_min + step * np.arange(n), dtype=np.float64))
+
+    @staticmethod
+    def linear_size(f_min: float, f_max: float, step: float) -> int:
+        """Number of frequencies of :meth:`linear` ``(f_min, f_max, step)``, without building it.
+
+        Parameters
+        ----------
+        f_min : float
+            First frequency in Hz (> 0).
+        f_max : float
+            Upper end of the band in Hz (> `f_min`).
+        step : float
+            Spacing in Hz (> 0).
+
+        Returns
+        -------
+        int
+            ``floor((f_max - f_min) / step) + 1`` (a grid point within 1e-9 steps of
+            `f_max` counts).
+
+        Raises
+        ------
+        CaseError
+            If the band or the step is not valid.
+        """
         _check_band(f_min, f_max)
         if not (np.isfinite(step) and step > 0):
             raise CaseError("frequency.step", step, "must be a finite number > 0 (Hz)")
-        n = int(np.floor((f_max - f_min) / step + 1e-9)) + 1
-        return cls(np.asarray(f_min + step * np.arange(n), dtype=np.float64))
+        return int(np.floor((f_max - f_min) / step + 1e-9)) + 1
 
     @classmethod
     def logarithmic(cls, f_min: float, f_max: float, n: int) -> FrequencyGrid:

@@ -157,13 +157,17 @@ def contact_check(
     }
 
 
-def run(case: Case | str | Path) -> xr.Dataset:
+def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
     """Run one case (a validated :class:`~railvib.case.Case` or a TOML path).
 
     Parameters
     ----------
     case : Case, str or pathlib.Path
         A validated case or a TOML case file.
+    force : bool
+        Run a case file whose grid has more than
+        :data:`railvib.case.plausibility.MAX_FREQUENCIES` frequencies (see
+        :func:`railvib.case.load_case`).
 
     Returns
     -------
@@ -178,7 +182,7 @@ def run(case: Case | str | Path) -> xr.Dataset:
     True
     """
     if not isinstance(case, Case):
-        case = load_case(case)
+        case = load_case(case, force=force)
     return run_system(
         build_system(case),
         build_grid(case),
@@ -231,7 +235,9 @@ class RunOutput:
 PSD_CSV = ("psd_acceleration", "psd_displacement", "psd_force")
 
 
-def run_to_folder(case: Case | str | Path, outdir: str | Path, *, plots: bool = True) -> RunOutput:
+def run_to_folder(
+    case: Case | str | Path, outdir: str | Path, *, plots: bool = True, force: bool = False
+) -> RunOutput:
     """Run one case and write its dataset, summary and plots to `outdir` (``railvib run``).
 
     Writes ``results.nc``, ``psd_acceleration.csv``, ``psd_displacement.csv``,
@@ -247,13 +253,17 @@ def run_to_folder(case: Case | str | Path, outdir: str | Path, *, plots: bool = 
         Output folder (created if needed).
     plots : bool
         Draw the PSD overview figures.
+    force : bool
+        Run a case file whose grid has more than
+        :data:`railvib.case.plausibility.MAX_FREQUENCIES` frequencies
+        (``railvib run --force``).
 
     Returns
     -------
     RunOutput
     """
     if not isinstance(case, Case):
-        case = load_case(case)
+        case = load_case(case, force=force)
     outdir = Path(outdir)
     ds = run(case)
     table = summary_table(summary(ds, bands=case.output.rms_bands))

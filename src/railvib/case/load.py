@@ -3,33 +3,42 @@
 from __future__ import annotations
 
 import copy
+import warnings
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+from numpy.typing import NDArray
 from pydantic import ValidationError
 
 from railvib.case.build import build_grid, build_pad
 from railvib.case.errors import case_error
+from railvib.case.plausibility import check_grid_size, plausibility_warnings
 from railvib.case.schema import FAMILY_TABLES, Case
 from railvib.errors import CaseError
 from railvib.io import read_toml
+from railvib.pads import PadModel
 from railvib.presets import load_preset
 from railvib.registry import merge_tables, resolve_paths
 
 __all__ = ["case_from_dict", "load_case", "merge_case_dicts"]
 
 
-def load_case(path: str | Path) -> Case:
+def load_case(path: str | Path, *, force: bool = False) -> Case:
     """Read and validate a TOML case file.
 
     A case may start from a preset with ``preset = "<name>"`` (see
     :func:`railvib.presets.list_presets`); its other keys then override the
-    preset's field by field.
+    preset's field by field. Legal but suspicious values warn (see
+    :func:`case_from_dict`).
 
     Parameters
     ----------
     path : str or pathlib.Path
         The TOML file.
+    force : bool
+        Accept a grid of more than :data:`railvib.case.plausibility.MAX_FREQUENCIES`
+        frequencies.
 
     Returns
     -------
@@ -42,11 +51,24 @@ def load_case(path: str | Path) -> Case:
         With the dotted field name, the value and what is allowed.
     """
     path = Path(path)
-    return case_from_dict(read_toml(path, "case"), base_dir=path.parent)
+    return case_from_dict(read_toml(path, "case"), base_dir=path.parent, force=force)
 
 
-def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> Case:
+def case_from_dict(
+    data: dict[str, Any],
+    base_dir: str | Path | None = None,
+    *,
+    force: bool = False,
+    warn: bool = True,
+) -> Case:
     """Validate a case given as a plain dict (the parsed TOML).
+
+    After validation, legal but suspicious values (an implausible speed, pad
+    stiffness or pad temperature, a very large grid; see
+    :func:`railvib.case.plausibility.plausibility_warnings`) each issue one
+    :class:`~railvib.errors.PlausibilityWarning` naming the field, and a grid of more
+    than :data:`railvib.case.plausibility.MAX_FREQUENCIES` frequencies is refused
+    unless `force`.
 
     Parameters
     ----------
@@ -54,13 +76,25 @@ def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> 
         Case tables; may contain ``preset = "<name>"``.
     base_dir : str or pathlib.Path, optional
         Directory against which relative file paths in the case are resolved.
+    force : bool
+        Accept a grid of any size (``railvib run --force``).
+    warn : bool
+        Issue the plausibility warnings (False where a case already loaded is
+        validated again, e.g. inside a sweep's workers).
 
     Returns
     -------
     Case
+
+    Raises
+    ------
+    CaseError
+        With the dotted field name, the value and what is allowed.
     """
     data = copy.deepcopy(data)
     preset = data.pop("preset", None)
+    own_track = data.get("track")
+    temperature_given = isinstance(own_track, dict) and "pad_temperature_c" in own_track
     if preset is not None:
         data = merge_case_dicts(load_preset(preset), data)
     if base_dir is not None:
@@ -69,7 +103,11 @@ def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> 
         case = Case.model_validate(data)
     except ValidationError as exc:
         raise case_error(exc, Case) from None
-    _check_models(case)
+    check_grid_size(case, force=force)  # before the grid is built
+    pad, f = _check_models(case)
+    if warn:
+        for warning in plausibility_warnings(case, pad, f, temperature_given=temperature_given):
+            warnings.warn(warning, stacklevel=2)
     return case
 
 
@@ -105,20 +143,22 @@ def _table_at(data: Any, location: tuple[str, ...]) -> Any:
     return data
 
 
-def _check_models(case: Case) -> None:
+def _check_models(case: Case) -> tuple[PadModel, NDArray[np.float64]]:
     """Build every family table of the case, and evaluate the pad on the case's grid.
 
     So an unknown model, a bad parameter, a pad that is not passive somewhere on
     the grid, or a temperature the pad's WLF law cannot take, is reported as a
-    case error before anything runs.
+    case error before anything runs. Returns the pad and the grid's frequencies (Hz).
     """
     data = case.model_dump(mode="python")
     for location, family in FAMILY_TABLES.items():
         family.from_dict(_table_at(data, location), ".".join(location))
     temperature = case.track.pad_temperature_c
+    pad, f = build_pad(case), build_grid(case).f
     try:
-        build_pad(case).check_passive(build_grid(case).f, temperature, field="track.pad")
+        pad.check_passive(f, temperature, field="track.pad")
     except CaseError as exc:
         if exc.field.startswith("track.pad") and exc.field != "track.pad_temperature_c":
             raise
         raise CaseError("track.pad_temperature_c", temperature, exc.allowed) from None
+    return pad, f

@@ -34,12 +34,44 @@ __all__ = [
 
 
 def quantity(
-    unit: str, doc: str, *, gt: float | None = 0.0, ge: float | None = None, **kw: Any
+    unit: str,
+    doc: str,
+    *,
+    gt: float | None = 0.0,
+    ge: float | None = None,
+    plausible: tuple[float, float] | None = None,
+    why: str = "",
+    **kw: Any,
 ) -> Any:
-    """A required physical field with its unit and one-line documentation."""
+    """A required physical field with its unit and one-line documentation.
+
+    Parameters
+    ----------
+    unit : str
+        Unit of the value.
+    doc : str
+        One line of documentation.
+    gt, ge : float, optional
+        Lower bound of a legal value (in `unit`); `ge` replaces `gt`.
+    plausible : (float, float), optional
+        Legal values outside this range (in `unit`) load with a
+        :class:`~railvib.errors.PlausibilityWarning` (see :mod:`railvib.case.plausibility`).
+    why : str
+        Why values outside `plausible` are suspicious, for the warning.
+    **kw
+        Passed to :func:`pydantic.Field`.
+
+    Returns
+    -------
+    pydantic.fields.FieldInfo
+        The field.
+    """
     if ge is not None:
         gt = None
-    return Field(..., gt=gt, ge=ge, description=doc, json_schema_extra={"unit": unit}, **kw)
+    extra: dict[str, Any] = {"unit": unit}
+    if plausible is not None:
+        extra.update(plausible=plausible, plausible_why=why)
+    return Field(..., gt=gt, ge=ge, description=doc, json_schema_extra=extra, **kw)
 
 
 #: ``[vehicle]``: the parameters of the default vehicle model, declared with it
@@ -137,7 +169,13 @@ class Case(Section):
         description="single_rail: the beam is ONE rail carrying the whole vehicle (the paper's "
         "reading); rail_pair: the beam is both rails (2 EI, 2 m, 2 pads, 2 k_H per wheelset)",
     )
-    speed_kmh: float = quantity("km/h", "vehicle speed")
+    speed_kmh: float = quantity(
+        "km/h",
+        "vehicle speed",
+        plausible=(10.0, 450.0),
+        why="the range of railway running speeds (trains in service run at up to 350 km/h): "
+        "likely a typo or a value in another unit",
+    )
     vehicle: VehicleSection
     track: TrackSection
     contact: ContactSection

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import sys
+import warnings
 from pathlib import Path
+from typing import Any
 
 import click
 
 from railvib.cli.options import output_option
-from railvib.errors import RailvibError
+from railvib.errors import PlausibilityWarning, RailvibError
 
 __all__ = ["cli", "main"]
 
@@ -36,11 +38,12 @@ def cli() -> None:
     help="exit with code 3 when the case is beyond the linear model (loss of contact above "
     "output.loss_of_contact_threshold); the results are written all the same",
 )
-def run(case_file: Path, outdir: Path, no_plots: bool, strict: bool) -> None:
+@click.option("--force", is_flag=True, help="run a grid of more than 2,000,000 frequencies")
+def run(case_file: Path, outdir: Path, no_plots: bool, strict: bool, force: bool) -> None:
     """Run CASE_FILE and write the dataset, summary and PSD plots to OUTPUT."""
     from railvib.cli.run import run_case_command
 
-    run_case_command(case_file, outdir, plots=not no_plots, strict=strict)
+    run_case_command(case_file, outdir, plots=not no_plots, strict=strict, force=force)
 
 
 @cli.command()
@@ -113,6 +116,18 @@ def _plot_alias() -> click.Command:
 _register_optional()
 
 
+def _one_line(show: Any) -> Any:
+    """`show` (a ``warnings.showwarning``) printing a PlausibilityWarning as one line."""
+
+    def _show(message: Warning | str, category: type[Warning], *args: Any, **kw: Any) -> None:
+        if issubclass(category, PlausibilityWarning):
+            click.echo(f"warning: {message}", err=True)  # no file name, no source line
+        else:
+            show(message, category, *args, **kw)
+
+    return _show
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point: run the CLI; a RailvibError becomes one line on stderr and its exit code.
 
@@ -129,10 +144,15 @@ def main(argv: list[str] | None = None) -> int:
         130 when aborted, else click's code.
     """
     try:
-        cli.main(args=argv, standalone_mode=False)
+        with warnings.catch_warnings():
+            warnings.showwarning = _one_line(warnings.showwarning)
+            cli.main(args=argv, standalone_mode=False)
     except RailvibError as exc:
         click.echo(f"error: {exc}", err=True)
         return exc.exit_code
+    except PlausibilityWarning as exc:  # escalated by -W error
+        click.echo(f"error: {exc}", err=True)
+        return 2
     except click.exceptions.Abort:
         click.echo("aborted", err=True)
         return 130

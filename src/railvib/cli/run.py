@@ -13,7 +13,11 @@ __all__ = ["run_case_command"]
 
 
 def run_case_command(
-    case_file: Path, outdir: Path, plots: bool = True, strict: bool = False
+    case_file: Path,
+    outdir: Path,
+    plots: bool = True,
+    strict: bool = False,
+    force: bool = False,
 ) -> None:
     """Run `case_file` into `outdir`, print its summary (:func:`railvib.solve.run_to_folder`).
 
@@ -28,8 +32,10 @@ def run_case_command(
     strict : bool
         Raise :class:`~railvib.errors.LinearModelInvalid` (exit code 3) after writing
         when the case is beyond the linear model.
+    force : bool
+        Run a grid of more than 2,000,000 frequencies.
     """
-    out = run_to_folder(case_file, outdir, plots=plots)
+    out = run_to_folder(case_file, outdir, plots=plots, force=force)
     click.echo(out.text())
     click.echo(f"written to {outdir}/")
     if strict and not out.linear_model_valid:

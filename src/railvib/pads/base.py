@@ -81,6 +81,16 @@ class PadModel(ABC):
         """Whether :meth:`stiffness` depends on its `temperature` argument."""
         return False
 
+    @property
+    def temperature_range_c(self) -> tuple[float, float] | None:
+        """``(T_lo, T_hi)`` in degC over which the temperature dependence can be trusted.
+
+        None for a model without temperature dependence (and by default). A case whose
+        pad temperature lies outside the range is run, with a
+        :class:`~railvib.errors.PlausibilityWarning`.
+        """
+        return None
+
     @abstractmethod
     @fill_doc(_SHARED)
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:

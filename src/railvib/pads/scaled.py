@@ -38,6 +38,11 @@ class ScaledPad(PadModel):
         """As the base pad."""
         return self.base.temperature_dependent
 
+    @property
+    def temperature_range_c(self) -> tuple[float, float] | None:
+        """As the base pad (degC)."""
+        return self.base.temperature_range_c
+
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``factor * K*_base(f, T)`` in N/m."""
         return np.asarray(self.factor * self.base.stiffness(f, temperature), dtype=np.complex128)

@@ -30,6 +30,8 @@ __all__ = [
     "UNIVERSAL_C1",
     "UNIVERSAL_C2_K",
     "WLF",
+    "WLF_SPAN_ABOVE_TG_K",
+    "WLF_WINDOW_WITHOUT_TG_K",
     "TTS_PARAMETERS",
     "TemperatureShifted",
     "tts_from_dict",
@@ -42,6 +44,10 @@ UNIVERSAL_C1 = 17.44
 UNIVERSAL_C2_K = 51.6
 #: Volume expansion coefficient a_f used by the seed (Eq. 26), 1/K.
 DEFAULT_EXPANSION_COEFFICIENT_PER_K = 4.8e-4
+#: Width above Tg over which the WLF equation holds, K (Williams, Landel & Ferry 1955).
+WLF_SPAN_ABOVE_TG_K = 100.0
+#: Half-width of the trusted window about the reference temperature when Tg is unknown, K.
+WLF_WINDOW_WITHOUT_TG_K = 80.0
 
 
 @dataclass(frozen=True)
@@ -259,6 +265,36 @@ class TemperatureShifted(PadModel):
     def temperature_dependent(self) -> bool:
         """Always true: the stiffness is shifted to the given temperature."""
         return True
+
+    @property
+    def temperature_range_c(self) -> tuple[float, float]:
+        """``(T_lo, T_hi)`` in degC where the WLF shift can be trusted.
+
+        The WLF equation is an empirical law of amorphous polymers that holds from the
+        glass transition Tg to about Tg + 100 K (Williams, Landel & Ferry 1955): below
+        Tg the polymer is glassy and shifts by an Arrhenius law, far above it the
+        free-volume reasoning behind WLF no longer applies (and an elastomer pad
+        degrades). So:
+
+        * universal constants (C1 = 17.44, C2 = 51.6 K, which are written about Tg, so
+          the law's reference temperature *is* Tg): ``[Tg, Tg + 100 K]``;
+        * fitted or given constants (Tg not known):
+          ``[T_ref - 80 K, T_ref + 80 K]`` about the master curve's reference
+          temperature ``T_ref``. Pad master curves are measured over roughly -40 to
+          +60 degC about ``T_ref`` ~ 20 degC, and Tg of pad elastomers lies near
+          -60 to -30 degC; the window is wide on purpose, so it flags only
+          temperatures no pad data can have covered (e.g. +400 degC, a Kelvin value
+          typed as degC).
+
+        Outside the range a case still runs (the shift is defined down to the WLF
+        singularity ``T0 - C2``, below which the case is refused), with a
+        :class:`~railvib.errors.PlausibilityWarning`.
+        """
+        if self.wlf.c1 == UNIVERSAL_C1 and self.wlf.c2_k == UNIVERSAL_C2_K:
+            tg = self.wlf.reference_temperature_c
+            return (tg, tg + WLF_SPAN_ABOVE_TG_K)
+        t_ref = self.reference_temperature_c
+        return (t_ref - WLF_WINDOW_WITHOUT_TG_K, t_ref + WLF_WINDOW_WITHOUT_TG_K)
 
     def __post_init__(self) -> None:
         if not isinstance(self.base, PadModel) or isinstance(self.base, TemperatureShifted):

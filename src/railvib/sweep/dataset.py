@@ -105,7 +105,7 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
         (:func:`railvib.results.units.with_unit_coordinates`).
     """
     layout = SweepLayout(spec)
-    base = case_from_dict(spec.base_case_dict())
+    base = case_from_dict(spec.base_case_dict(), warn=False)
     system = build_system(base)
     f = build_grid(base).f
     labels = case_labels(system)

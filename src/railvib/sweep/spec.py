@@ -593,6 +593,8 @@ def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
 def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tuple[SweepAxis, ...]:
     axes: list[SweepAxis] = []
     dims: set[str] = set()
+    # first: its axis values would each warn that the pad ignores the temperature
+    _check_temperature_axis(base, [ax.field for ax in spec.axes], base_dir)
     for i, ax in enumerate(spec.axes):
         where = f"axes[{i}]"
         if ax.field.split(".")[0] in _FIXED_PREFIXES:
@@ -619,7 +621,6 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tupl
                 field=ax.field, dim=ax.dim, group=group, values=tuple(values), coords=tuple(coords)
             )
         )
-    _check_temperature_axis(base, [entry.field for entry in axes], base_dir)
     _check_groups(axes)
     return tuple(axes)
 
