@@ -3,13 +3,18 @@
 Each top-level unit of the package (a subpackage or a module) has a layer; a unit
 imports only units of lower layers, so there is no import cycle between units,
 and no module-level cycle inside them. Imports inside functions are allowed only
-in the CLI (which loads its commands lazily) and for the plotting modules (which
-import matplotlib), so that no dependency hides in a function body.
+in the CLI (which loads its commands lazily), for the plotting modules (which
+import matplotlib) and for the heavy optional libraries of :data:`LAZY_LIBRARIES`
+(so that ``import railvib`` and ``railvib run`` do not pay for what they do not
+use), so that no dependency hides in a function body. The facade
+``railvib/__init__.py`` loads its names on first use (:data:`railvib._FACADE`).
 """
 
 from __future__ import annotations
 
 import ast
+import importlib
+import sys
 from pathlib import Path
 
 import pytest
@@ -49,6 +54,17 @@ LAYERS = {
 }
 
 
+#: third-party modules that may be imported inside a function (outside cli/), and why:
+#: each costs 0.1-0.3 s at start-up and is needed only by a few functions
+LAZY_LIBRARIES = {
+    "matplotlib": "figures: only code that draws",
+    "scipy.optimize": "pad and WLF fitting only (railvib.pads.fit)",
+    "scipy.linalg": "the Timoshenko span's matrix exponential only (railvib.track.beam)",
+    "scipy.sparse.linalg": "the finite-track reference model only (railvib.validation)",
+    "distributed": "a sweep on a Dask cluster only (railvib.sweep.runner)",
+}
+
+
 def _unit(path: Path) -> str:
     rel = path.relative_to(SRC)
     return rel.parts[0] if len(rel.parts) > 1 else rel.stem
@@ -60,8 +76,8 @@ def _module(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def _imports(path: Path) -> list[tuple[str, bool]]:
-    """``(imported railvib module, inside a function)`` of every import in `path`."""
+def _all_imports(path: Path) -> list[tuple[str, bool]]:
+    """``(imported module, inside a function)`` of every absolute import in `path`."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     out = []
 
@@ -73,14 +89,19 @@ def _imports(path: Path) -> list[tuple[str, bool]]:
             if isinstance(child, ast.ImportFrom) and child.module and child.level == 0:
                 if child.module == "railvib":
                     out.extend((f"railvib.{a.name}", inner) for a in child.names)
-                elif child.module.startswith("railvib."):
+                else:
                     out.append((child.module, inner))
             elif isinstance(child, ast.Import):
-                out.extend((a.name, inner) for a in child.names if a.name.startswith("railvib"))
+                out.extend((a.name, inner) for a in child.names)
             visit(child, inner)
 
     visit(tree, False)
     return out
+
+
+def _imports(path: Path) -> list[tuple[str, bool]]:
+    """``(imported railvib module, inside a function)`` of every import in `path`."""
+    return [(m, inner) for m, inner in _all_imports(path) if m.split(".")[0] == "railvib"]
 
 
 SOURCES = [p for p in sorted(SRC.rglob("*.py")) if "data" not in p.relative_to(SRC).parts]
@@ -109,6 +130,32 @@ def test_no_hidden_imports_in_function_bodies(path):
             f"{path.relative_to(SRC)} imports {module} inside a function; import it at the "
             "top (only plotting modules, which load matplotlib, may be imported lazily)"
         )
+
+
+@pytest.mark.parametrize("path", SOURCES, ids=lambda p: str(p.relative_to(SRC)))
+def test_only_heavy_optional_libraries_are_imported_in_function_bodies(path):
+    if _unit(path) == "cli":
+        return  # the CLI loads its commands lazily, by design
+    standard = set(sys.stdlib_module_names)
+    for module, inner in _all_imports(path):
+        top = module.split(".")[0]
+        if not inner or top in ("railvib", *standard):
+            continue
+        assert any(module == lib or module.startswith(lib + ".") for lib in LAZY_LIBRARIES), (
+            f"{path.relative_to(SRC)} imports {module} inside a function; import it at the "
+            f"top, or add it to LAZY_LIBRARIES with the reason (a heavy optional library)"
+        )
+
+
+def test_the_facade_names_modules_of_lower_layers_that_define_them():
+    import railvib
+
+    facade = railvib._FACADE
+    assert set(railvib.__all__) <= set(facade)
+    for name, module in facade.items():
+        target = module.split(".")[1]
+        assert LAYERS[target] < LAYERS["__init__"], f"{name}: {module}"
+        assert name in vars(importlib.import_module(module)), f"{module} defines no {name}"
 
 
 def test_no_import_cycle_between_modules():

@@ -10,7 +10,7 @@ from railvib.case.build import (
     contact_stiffness,
 )
 from railvib.case.header import case_header
-from railvib.case.load import case_from_dict, load_case, merge_case_dicts
+from railvib.case.load import case_from_dict, load_case, load_preset_case, merge_case_dicts
 from railvib.case.schema import Case
 
 __all__ = [
@@ -25,5 +25,6 @@ __all__ = [
     "case_header",
     "contact_stiffness",
     "load_case",
+    "load_preset_case",
     "merge_case_dicts",
 ]

@@ -18,10 +18,10 @@ from railvib.case.schema import FAMILY_TABLES, Case
 from railvib.errors import CaseError
 from railvib.io import read_toml
 from railvib.pads import PadModel
-from railvib.presets import load_preset
+from railvib.presets import DEFAULT_PRESET, load_preset
 from railvib.registry import merge_tables, resolve_paths
 
-__all__ = ["case_from_dict", "load_case", "merge_case_dicts"]
+__all__ = ["case_from_dict", "load_case", "load_preset_case", "merge_case_dicts"]
 
 
 def load_case(path: str | Path, *, force: bool = False) -> Case:
@@ -109,6 +109,22 @@ def case_from_dict(
         for warning in plausibility_warnings(case, pad, f, temperature_given=temperature_given):
             warnings.warn(warning, stacklevel=2)
     return case
+
+
+def load_preset_case(name: str = DEFAULT_PRESET) -> Case:
+    """The validated case of preset `name` (``railvib.load_preset_case``).
+
+    Parameters
+    ----------
+    name : str
+        A preset (:func:`railvib.presets.list_presets`); default: the paper's analysis.
+
+    Returns
+    -------
+    Case
+        The preset as a validated case.
+    """
+    return case_from_dict({"preset": name})
 
 
 def merge_case_dicts(base: dict[str, Any], override: dict[str, Any]) -> dict[str, Any]:
