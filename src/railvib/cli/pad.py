@@ -8,10 +8,18 @@ import click
 
 from railvib.cli.options import output_option
 from railvib.errors import CaseError
-from railvib.padfit import PadFitJob, fit_pad_to_folder
-from railvib.pads import fittable_models
 
 __all__ = ["pad"]
+
+
+class _ModelOption(click.Option):
+    """``--model``, whose help lists the fittable models when shown (not at start-up)."""
+
+    def get_help_record(self, ctx: click.Context) -> tuple[str, str] | None:
+        from railvib.pads import fittable_models
+
+        self.help = f"pad model: {', '.join(fittable_models())} (aliases zener, prony)"
+        return super().get_help_record(ctx)
 
 
 def _floats(text: str, name: str) -> list[float]:
@@ -28,12 +36,7 @@ def pad() -> None:
 
 @pad.command()
 @click.argument("data", type=click.Path(dir_okay=False, path_type=Path))
-@click.option(
-    "--model",
-    default="fractional_zener",
-    show_default=True,
-    help=f"pad model: {', '.join(fittable_models())} (aliases zener, prony)",
-)
+@click.option("--model", cls=_ModelOption, default="fractional_zener", show_default=True)
 @output_option(Path("pad-fit"))
 @click.option(
     "--reference-temperature",
@@ -106,6 +109,8 @@ def fit(
     Without --tg or --c1/--c2 the WLF constants are fitted (needs several frequencies
     per temperature). pad.toml holds a [track.pad] table usable in a case file.
     """
+    from railvib.padfit import PadFitJob, fit_pad_to_folder
+
     job = PadFitJob(
         model=model,
         reference_temperature_c=t_ref,

@@ -12,21 +12,18 @@ import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
-from rich.console import Console
-from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
-from railvib.coupling import CoupledSystem
 from railvib.errors import RailvibDeprecationWarning
-from railvib.spectra.base import SpatialSpectrum
-from railvib.validation import (
-    ValidationResult,
-    ValidationSettings,
-    agreement_markdown,
-    monte_carlo_work,
-    validate_to_folder,
-)
+
+if TYPE_CHECKING:  # the library loads when a command runs, not when the CLI starts
+    from rich.console import Console
+
+    from railvib.coupling import CoupledSystem
+    from railvib.spectra.base import SpatialSpectrum
+    from railvib.validation import ValidationResult, ValidationSettings
 
 __all__ = ["run_validation", "validate"]
 
@@ -36,6 +33,8 @@ DEFAULT_OUTPUT = Path("validation")
 @contextmanager
 def _progress_bar(console: Console, total: int) -> Iterator[Callable[[int], None]]:
     """A rich bar over the Monte Carlo's Newmark steps; yields the `progress` callback."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
     columns = (
         TextColumn("[progress.description]{task.description}"),
         BarColumn(),
@@ -56,6 +55,8 @@ def _validate_and_print(
     name: str,
     console: Console,
 ) -> ValidationResult:
+    from railvib.validation import agreement_markdown, monte_carlo_work, validate_to_folder
+
     with _progress_bar(console, monte_carlo_work(settings)) as progress:
         result = validate_to_folder(
             system, spectrum, outdir, settings=settings, seed=seed, progress=progress, name=name
@@ -111,6 +112,10 @@ def run_validation(
         RailvibDeprecationWarning,
         stacklevel=2,
     )
+    from rich.console import Console
+
+    from railvib.validation import ValidationSettings
+
     settings = (ValidationSettings.quick() if quick else ValidationSettings()).with_realisations(
         realisations
     )
@@ -159,7 +164,10 @@ def validate(
     seed: int,
 ) -> None:
     """Run CASE_FILE three ways (PEM, finite track, Monte Carlo) and write the comparison."""
+    from rich.console import Console
+
     from railvib.case import build_spectrum, build_system, load_case
+    from railvib.validation import ValidationSettings
 
     folder = _output_folder(output, outdir)
     case = load_case(case_file)
