@@ -13,9 +13,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 import xarray as xr
-from scipy.integrate import trapezoid
-from scipy.stats import norm
+from scipy.special import ndtr  # Phi, the standard normal CDF (what scipy.stats.norm.cdf calls)
 
+from railvib.grid import trapezoid
 from railvib.outputs.base import OUTPUTS, DerivedOutput
 from railvib.registry import parameter
 
@@ -113,7 +113,7 @@ class ContactCheck(DerivedOutput):
         sigma = np.sqrt(trapezoid(psd.values, f, axis=axis))
         p0 = ds["static_contact_load"].broadcast_like(psd.isel(frequency=0, drop=True))
         p0_values = p0.transpose(*dims).values
-        probability = norm.cdf(-p0_values / np.maximum(sigma, np.finfo(float).tiny))
+        probability = ndtr(-p0_values / np.maximum(sigma, np.finfo(float).tiny))
         attrs = self.variable_attrs(float(f[0]), float(f[-1]))
         worst = xr.DataArray(probability, dims=dims).max("wheel")
         return {

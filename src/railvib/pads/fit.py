@@ -13,7 +13,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import least_squares, minimize_scalar
 
 from railvib.errors import CaseError
 from railvib.pads.base import PADS, FitStart, PadModel
@@ -181,6 +180,8 @@ def _pair_shift(xa: _F, ya: _F, xb: _F, yb: _F, max_shift: float) -> float:
     d0 = grid[int(np.argmin(costs))]
     if abs(d0) >= max_shift - step:  # best superposition at the search limit: none found
         return np.nan
+    from scipy.optimize import minimize_scalar  # lazy: 0.2 s, only for fitting
+
     res = minimize_scalar(cost, bounds=(d0 - step, d0 + step), method="bounded")
     return float(res.x) if res.fun <= costs.min() else float(d0)
 
@@ -257,6 +258,8 @@ def fit_free_shifts(
     def resid(p: _F) -> _F:
         c1, c2, b = p
         return -c1 * dt / (c2 + dt) - (log_a + b)
+
+    from scipy.optimize import least_squares  # lazy: 0.2 s, only for fitting
 
     b0 = -float(np.interp(reference_temperature_c, temps, log_a))
     sol = least_squares(
@@ -406,6 +409,8 @@ def fit_model(
     k = np.asarray(stiffness_n_per_m, dtype=complex).ravel()
     if f.size != k.size or f.size < 2 or np.any(f <= 0) or np.any(k.real <= 0):
         raise CaseError("data", f"{f.size} points", ">= 2 points with f > 0 (Hz) and K' > 0 (N/m)")
+    from scipy.optimize import least_squares  # lazy: 0.2 s, only for fitting
+
     best = None
     for start in _fit_starts(name, f, k, n_terms, f0_hz):
 

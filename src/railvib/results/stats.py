@@ -7,9 +7,9 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 import xarray as xr
-from scipy.integrate import trapezoid
 
 from railvib.docstrings import fill_doc
+from railvib.grid import trapezoid
 from railvib.results.units import (
     QUANTITY_UNITS,
     quantity_unit,
