@@ -16,7 +16,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 from railvib.errors import CaseError
 
@@ -27,6 +27,7 @@ if TYPE_CHECKING:  # matplotlib is imported only by code that draws
 __all__ = [
     "FIGURE_DPI",
     "atomic_path",
+    "new_figure",
     "railvib_version",
     "read_toml",
     "save_figure",
@@ -112,6 +113,41 @@ def write_text(path: str | Path, text: str) -> Path:
     return path
 
 
+def new_figure(
+    figsize: tuple[float, float],
+    *,
+    layout: Literal["constrained", "compressed", "tight"] | None = None,
+    **subplots: Any,
+) -> tuple[Figure, Any]:
+    """A figure and its axes for writing to a file, outside pyplot.
+
+    A :class:`matplotlib.figure.Figure` made directly has no GUI window and needs
+    no backend, so a library that writes figures neither switches the user's
+    backend nor opens windows, and is not slowed by pyplot's figure manager.
+    (Plot functions called without axes still draw on a new pyplot figure, for
+    interactive use.)
+
+    Parameters
+    ----------
+    figsize : (float, float)
+        Width and height of the figure (unit: inch).
+    layout : str, optional
+        Layout engine (``"constrained"``, ``"tight"``) or None.
+    **subplots
+        Passed to :meth:`matplotlib.figure.Figure.subplots` (``nrows``, ``ncols``,
+        ``sharex``, ``squeeze``, ...).
+
+    Returns
+    -------
+    (matplotlib.figure.Figure, axes)
+        The figure and what ``Figure.subplots`` returns (one Axes or an array).
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=figsize, layout=layout)
+    return fig, fig.subplots(**subplots)
+
+
 def save_figure(
     fig: Figure | Axes, path: str | Path, *, dpi: int = FIGURE_DPI, tight: bool = True
 ) -> Path:
@@ -133,7 +169,6 @@ def save_figure(
     pathlib.Path
         `path`.
     """
-    import matplotlib.pyplot as plt
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
@@ -148,5 +183,8 @@ def save_figure(
         with atomic_path(path) as tmp:
             fig.savefig(tmp, dpi=dpi, format="png")
     finally:
-        plt.close(fig)
+        if fig.canvas.manager is not None:  # a pyplot figure: release it (else nothing holds it)
+            import matplotlib.pyplot as plt
+
+            plt.close(fig)
     return path

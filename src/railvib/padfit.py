@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from railvib.errors import CaseError
-from railvib.io import save_figure, write_text
+from railvib.io import new_figure, save_figure, write_text
 from railvib.pads import (
     DEFAULT_EXPANSION_COEFFICIENT_PER_K,
     WLF,
@@ -169,10 +169,14 @@ def _plots(result: ModelFit, job: PadFitJob, name: str, outdir: Path) -> Sequenc
     assert master is not None, "fit_pad returns the master curve it fitted"
     fr = master.reduced_frequency_hz
     f_curve = np.geomspace(fr.min(), fr.max(), 400)
-    axes = plot_master_curve(master, f_curve, result.model.stiffness(f_curve))
+    _, panels = new_figure(figsize=(7, 6.5), nrows=2, ncols=1, sharex=True)
+    axes = plot_master_curve(
+        master, f_curve, result.model.stiffness(f_curve), axes=(panels[0], panels[1])
+    )
     f_plot = np.geomspace(job.band_hz[0], job.band_hz[1], 200)
     curves = {t: result.model.stiffness(f_plot, t) for t in job.temperatures_c}
-    ax = plot_stiffness_vs_frequency(f_plot, curves)
+    _, ax = new_figure(figsize=(7, 4))
+    ax = plot_stiffness_vs_frequency(f_plot, curves, ax=ax)
     ax.set_title(f"{name}: {job.model} with TTS")
     return [
         save_figure(axes[0], outdir / "master_curve.png", tight=False),

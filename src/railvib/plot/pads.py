@@ -8,15 +8,11 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-import matplotlib
+import numpy as np
+from matplotlib.axes import Axes
+from numpy.typing import ArrayLike
 
-matplotlib.use("Agg", force=False)
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.axes import Axes  # noqa: E402
-from numpy.typing import ArrayLike  # noqa: E402
-
-from railvib.pads.fit import MasterCurve  # noqa: E402
+from railvib.pads.fit import MasterCurve
 
 __all__ = ["plot_master_curve", "plot_stiffness_vs_frequency"]
 
@@ -50,7 +46,9 @@ def plot_master_curve(
     -------
     (matplotlib.axes.Axes, matplotlib.axes.Axes)
     """
-    if axes is None:
+    if axes is None:  # for interactive use: a pyplot figure, in the user's backend
+        import matplotlib.pyplot as plt
+
         _, axes = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
     ax_s, ax_l = axes
     t = master.temperature_c
@@ -117,7 +115,9 @@ def plot_stiffness_vs_frequency(
     if quantity not in parts:
         raise ValueError(f"quantity = {quantity!r}: one of {', '.join(parts)}")
     get, ylabel = parts[quantity]
-    if ax is None:
+    if ax is None:  # for interactive use: a pyplot figure, in the user's backend
+        import matplotlib.pyplot as plt
+
         _, ax = plt.subplots(figsize=(7, 4))
     for temp, k in sorted(stiffness_by_temperature.items()):
         ax.plot(frequency_hz, get(np.asarray(k)), label=f"{temp:g} °C")

@@ -10,19 +10,15 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-import matplotlib
+import numpy as np
+import xarray as xr
+from matplotlib.axes import Axes
+from matplotlib.colors import LogNorm
 
-matplotlib.use("Agg", force=False)
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-from matplotlib.axes import Axes  # noqa: E402
-from matplotlib.colors import LogNorm  # noqa: E402
-
-from railvib.errors import CaseError  # noqa: E402
-from railvib.io import save_figure  # noqa: E402
-from railvib.outputs import loss_of_contact_threshold  # noqa: E402
-from railvib.response import rail_label  # noqa: E402
+from railvib.errors import CaseError
+from railvib.io import new_figure, save_figure
+from railvib.outputs import loss_of_contact_threshold
+from railvib.response import rail_label
 
 __all__ = [
     "DEFAULT_RESPONSES",
@@ -141,6 +137,8 @@ def plot_sweep(
         responses = [variable]
     invalid = _invalid(ds, pick) if variable != "linear_model_valid" else None
     if ax is None:
+        import matplotlib.pyplot as plt  # for interactive use: the user's backend
+
         _, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
     unit = _unit(ds, da, responses) if per_response else da.attrs.get("units", "")
     long_name = da.attrs.get("long_name", variable)
@@ -304,11 +302,13 @@ def save_sweep_plots(
     for variable in variables:
         if variable in ds.data_vars and "response" not in ds[variable].dims:
             path = outdir / f"sweep_{variable}.png"  # a case's contact check: one figure
-            save_axes(plot_sweep(ds, variable, responses[:1] or labels[:1], x=x, y=y), path)
+            _, ax = new_figure(figsize=(7.0, 4.5), layout="constrained")
+            save_axes(plot_sweep(ds, variable, responses[:1] or labels[:1], x=x, y=y, ax=ax), path)
             written.append(path)
             continue
         for r in responses:
             path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
-            save_axes(plot_sweep(ds, variable, r, x=x, y=y), path)
+            _, ax = new_figure(figsize=(7.0, 4.5), layout="constrained")
+            save_axes(plot_sweep(ds, variable, r, x=x, y=y, ax=ax), path)
             written.append(path)
     return written

@@ -5,21 +5,17 @@ from __future__ import annotations
 from collections.abc import Mapping
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+import xarray as xr
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg", force=False)
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-from matplotlib.axes import Axes  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-
-from railvib.case import Case, build_pad  # noqa: E402
-from railvib.io import save_figure  # noqa: E402
-from railvib.plot.pads import plot_stiffness_vs_frequency  # noqa: E402
-from railvib.plot.psd import plot_psd  # noqa: E402
-from railvib.reproduce.metrics import peak, peak_frequency  # noqa: E402
-from railvib.reproduce.study import (  # noqa: E402
+from railvib.case import Case, build_pad
+from railvib.io import new_figure, save_figure
+from railvib.plot.pads import plot_stiffness_vs_frequency
+from railvib.plot.psd import plot_psd
+from railvib.reproduce.metrics import peak, peak_frequency
+from railvib.reproduce.study import (
     CASES,
     COMPARISONS,
     FigureSpec,
@@ -89,7 +85,7 @@ def draw_figure(spec: FigureSpec, results: Mapping[str, xr.Dataset]) -> Figure:
         crosses mark the (frequency, PSD) pairs the paper states.
     """
     n = len(spec.panels)
-    fig, axes = plt.subplots(1, n, figsize=(max(6.2 * n, 9.0), 4.4), squeeze=False)
+    fig, axes = new_figure(figsize=(max(6.2 * n, 9.0), 4.4), nrows=1, ncols=n, squeeze=False)
     comparison = next(c for c in COMPARISONS if c.key == spec.comparison)
     for i, (ax, xlim) in enumerate(zip(axes[0], spec.panels, strict=True)):
         _draw_panel(ax, spec, results, xlim)
@@ -153,7 +149,7 @@ def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path) -> Path:
         float(cases[key].track.pad_temperature_c or 0.0): build_pad(cases[key]).stiffness(f)
         for key in FIG8_CASES
     }
-    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    fig, ax = new_figure(figsize=(6.5, 4.2))
     plot_stiffness_vs_frequency(f, curves, ax=ax)
     ax.set_xscale("log")
     ax.set_yscale("log")
