@@ -151,8 +151,9 @@ def main():
                 missed |= not ok
                 verdict, goal_text = ("PASS" if ok else "FAIL"), f"{goal:.1f} s"
             print(f"{name:42s} {lo:6.3f}s {med:6.3f}s {goal_text:>6s} {verdict}", flush=True)
-        written = sorted(p.name for p in out.iterdir()) if out.exists() else []
-        print(f"(last run wrote {len(written)} files: {', '.join(written)})")
+            if name == "railvib run template":
+                written = sorted(p.name for p in out.iterdir())
+        print(f"(railvib run template wrote {len(written)} files: {', '.join(written)})")
         if args.cost:
             per_byte, per_s = _cost(work)
             print(f"cost per frequency: {per_byte:,.0f} B peak memory, {per_s * 1e6:.1f} us wall")

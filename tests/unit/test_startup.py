@@ -84,7 +84,7 @@ def test_no_library_module_switches_the_matplotlib_backend(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(SRC)}
     env.pop("MPLBACKEND", None)
     subprocess.run([sys.executable, "-c", code], env=env, check=True)
-    assert len(list(tmp_path.glob("*.png"))) == 4
+    assert len(list(tmp_path.glob("*.png"))) == 8
 
 
 def test_no_library_module_calls_matplotlib_use():
@@ -105,7 +105,7 @@ def test_file_figures_are_not_pyplot_figures(tmp_path):
         {"preset": "wang2017_metro", "frequency": {"f_min": 1.0, "f_max": 50.0, "step": 1.0}}
     )
     before = plt.get_fignums()
-    assert len(save_overview(railvib.run(case), tmp_path)) == 4
+    assert len(save_overview(railvib.run(case), tmp_path)) == 8
     assert plt.get_fignums() == before  # no window, no figure left in pyplot
 
 
@@ -117,15 +117,18 @@ def result():
     return railvib.run(case)
 
 
-@pytest.mark.parametrize("variable", ["psd_acceleration", "psd_displacement"])
+@pytest.mark.parametrize("variable", ["psd_acceleration", "psd_displacement", "psd_force"])
 def test_csv_bytes_are_those_of_pandas(result, variable, tmp_path):
-    from railvib.results.dataset import save_csv
+    from railvib.results.dataset import column_units, save_csv
 
     da = result[variable]
+    units = column_units(da)
+    da = da.drop_vars([c for c in da.coords if c not in da.dims])
     df = da.to_pandas()
-    df.columns = [f"{c} [{da.attrs['units']}]" for c in df.columns]
+    prefix = "wheel" if "wheel" in da.dims else ""
+    df.columns = [f"{prefix}{c} [{u}]" for c, u in zip(df.columns, units, strict=True)]
     df.index.name = "frequency [Hz]"
-    expected = df.to_csv(float_format="%.6e")
+    expected = df.to_csv(float_format="%.6e")  # what save_csv wrote before issue 10
     path = save_csv(result, tmp_path / "t.csv", variable=variable)
     assert path.read_text(encoding="utf-8") == expected
 
@@ -195,10 +198,33 @@ def test_overview_figures_keep_their_dpi_and_size(result, tmp_path):
     from railvib.plot.psd import save_overview
 
     for path in save_overview(result, tmp_path):
-        assert imread(path).shape[:2] == (4 * FIGURE_DPI, 7 * FIGURE_DPI)
+        height = 5.5 if path.stem == "pad_stiffness" else 4.3  # inches, as before
+        assert imread(path).shape[:2] == (round(height * FIGURE_DPI), 7 * FIGURE_DPI)
 
 
 def test_netcdf_round_trip_is_unchanged(result, tmp_path):
     # the writer is unchanged; this pins that the faster CSV/plot path did not touch it
     out = railvib.load_netcdf(railvib.save_netcdf(result, tmp_path / "r.nc"))
     xr.testing.assert_identical(out.drop_attrs(deep=False), result.drop_attrs(deep=False))
+
+
+@pytest.mark.parametrize("title", [None, "short", "a long title " * 12])
+def test_overview_figures_with_fixed_margins_keep_everything_inside(title):
+    # the margins are not measured per figure: check nothing is cut off, for suptitles of
+    # one to three lines and the response groups' PSD ranges
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from railvib.plot.psd import overview_figures
+
+    data = {"preset": "wang2017_metro", "frequency": {"f_min": 0.5, "f_max": 1000.0, "step": 1.0}}
+    if title is not None:
+        data["title"] = title
+    for stem, fig in overview_figures(railvib.run(railvib.case_from_dict(data))):
+        renderer = FigureCanvasAgg(fig).get_renderer()
+        box, frame = fig.get_tightbbox(renderer), fig.bbox_inches
+        # inches; 0.02 in (2 px at 110 dpi): rounding of the text extents
+        assert box.x0 >= -0.02 and box.y0 >= -0.02, stem
+        assert box.x1 <= frame.x1 + 0.02 and box.y1 <= frame.y1 + 0.02, stem
+        for ax in fig.axes:  # the suptitle does not run into the axes title
+            title_box = ax.title.get_window_extent(renderer)
+            assert title_box.y1 <= fig._suptitle.get_window_extent(renderer).y0 + 1, stem
