@@ -11,6 +11,7 @@ import json
 import os
 import subprocess
 import sys
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,7 @@ import pytest
 import xarray as xr
 
 import railvib
+import railvib.plot.psd as psd_plot
 from railvib.grid import trapezoid
 
 SRC = Path(__file__).resolve().parents[2] / "src"
@@ -208,7 +210,7 @@ def test_netcdf_round_trip_is_unchanged(result, tmp_path):
     xr.testing.assert_identical(out.drop_attrs(deep=False), result.drop_attrs(deep=False))
 
 
-@pytest.mark.parametrize("title", [None, "short", "a long title " * 12])
+@pytest.mark.parametrize("title", [None, "short", "a long title " * 16])
 def test_overview_figures_with_fixed_margins_keep_everything_inside(title):
     # the margins are not measured per figure: check nothing is cut off, for suptitles of
     # one to three lines and the response groups' PSD ranges
@@ -219,12 +221,17 @@ def test_overview_figures_with_fixed_margins_keep_everything_inside(title):
     data = {"preset": "wang2017_metro", "frequency": {"f_min": 0.5, "f_max": 1000.0, "step": 1.0}}
     if title is not None:
         data["title"] = title
-    for stem, fig in overview_figures(railvib.run(railvib.case_from_dict(data))):
+    ds = railvib.run(railvib.case_from_dict(data))
+    lines = {None: 2, "short": 1}.get(title, 3)  # of the suptitle: title and speed
+    assert len(textwrap.wrap(psd_plot.case_title(ds), 90)) == lines
+    for stem, fig in overview_figures(ds):
         renderer = FigureCanvasAgg(fig).get_renderer()
         box, frame = fig.get_tightbbox(renderer), fig.bbox_inches
         # inches; 0.02 in (2 px at 110 dpi): rounding of the text extents
-        assert box.x0 >= -0.02 and box.y0 >= -0.02, stem
-        assert box.x1 <= frame.x1 + 0.02 and box.y1 <= frame.y1 + 0.02, stem
+        assert box.x0 >= -0.02, stem
+        assert box.y0 >= -0.02, stem
+        assert box.x1 <= frame.x1 + 0.02, stem
+        assert box.y1 <= frame.y1 + 0.02, stem
         for ax in fig.axes:  # the suptitle does not run into the axes title
             title_box = ax.title.get_window_extent(renderer)
             assert title_box.y1 <= fig._suptitle.get_window_extent(renderer).y0 + 1, stem
