@@ -6,6 +6,8 @@ import copy
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+from numpy.typing import NDArray
 from pydantic import ValidationError
 
 from railvib.case.build import build_grid, build_pad
@@ -42,7 +44,8 @@ def load_case(path: str | Path) -> Case:
         With the dotted field name, the value and what is allowed.
     """
     path = Path(path)
-    return case_from_dict(read_toml(path, "case"), base_dir=path.parent)
+    hint = "`railvib template > case.toml` writes one"
+    return case_from_dict(read_toml(path, "case", hint), base_dir=path.parent)
 
 
 def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> Case:
@@ -109,16 +112,39 @@ def _check_models(case: Case) -> None:
     """Build every family table of the case, and evaluate the pad on the case's grid.
 
     So an unknown model, a bad parameter, a pad that is not passive somewhere on
-    the grid, or a temperature the pad's WLF law cannot take, is reported as a
-    case error before anything runs.
+    the grid, a temperature the pad's WLF law cannot take, or an RMS band the grid
+    cannot resolve, is reported as a case error before anything runs.
     """
     data = case.model_dump(mode="python")
     for location, family in FAMILY_TABLES.items():
         family.from_dict(_table_at(data, location), ".".join(location))
+    grid = build_grid(case)
+    _check_bands(case, grid.f)
     temperature = case.track.pad_temperature_c
     try:
-        build_pad(case).check_passive(build_grid(case).f, temperature, field="track.pad")
+        build_pad(case).check_passive(grid.f, temperature, field="track.pad")
     except CaseError as exc:
         if exc.field.startswith("track.pad") and exc.field != "track.pad_temperature_c":
             raise
         raise CaseError("track.pad_temperature_c", temperature, exc.allowed) from None
+
+
+def _check_bands(case: Case, f: NDArray[np.float64]) -> None:
+    """Each ``[output] rms_bands`` band holds at least two frequencies of the case's grid.
+
+    A band outside the grid or between two grid points has no trapezoidal integral
+    (and one grid point would give an RMS of 0); it is refused when the case is
+    loaded, so a run writes all its outputs or none. A band reaching past the grid
+    is integrated over the part on the grid, as before.
+    """
+    fr = case.frequency
+    for i, (lo, hi) in enumerate(case.output.rms_bands):
+        inside = int(np.count_nonzero((f >= lo) & (f <= hi)))
+        if inside < 2:
+            raise CaseError(
+                f"output.rms_bands[{i}]",
+                [lo, hi],
+                f"a band holding at least two frequencies of the grid [{fr.f_min:g}, "
+                f"{fr.f_max:g}] Hz (this one holds {inside}); widen or move the band, or "
+                "change [frequency] (Hz)",
+            )

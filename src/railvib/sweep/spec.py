@@ -495,7 +495,8 @@ def load_sweep(path: str | Path) -> SweepSpec:
         With the dotted field name, the value and what is allowed.
     """
     path = Path(path)
-    return sweep_from_dict(read_toml(path, "sweep"), base_dir=path.parent)
+    hint = "docs/sweeps.md shows one"
+    return sweep_from_dict(read_toml(path, "sweep", hint), base_dir=path.parent)
 
 
 def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> SweepSpec:

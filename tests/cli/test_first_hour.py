@@ -1,0 +1,96 @@
+"""Issue 10 ("a new user's first hour"): each mistake a new user made, as a regression test.
+
+Every user mistake ends in one line ``error: ...`` naming the field or file and what
+to do, exit code 2, before anything is computed or written.
+"""
+
+import re
+
+import pytest
+
+from railvib.case import case_from_dict
+from railvib.cli.main import main
+from railvib.errors import CaseError
+from railvib.io import binary_kind, read_toml
+
+HDF5 = b"\x89HDF\r\n\x1a\n" + bytes(range(256))  # the start of every netCDF-4 file
+
+
+def _one_error_line(capsys):
+    captured = capsys.readouterr()
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1, captured.err
+    assert lines[0].startswith("error: ")
+    assert "Traceback" not in captured.err
+    return lines[0]
+
+
+# ---------------------------------------------------------------- item 1: binary case files
+
+
+@pytest.mark.parametrize(
+    ("data", "kind"),
+    [
+        (HDF5, "a netCDF-4/HDF5 file"),
+        (b"CDF\x01\x00\x00\x00\x00", "a netCDF file"),
+        (b"\x89PNG\r\n\x1a\n\x00\x00", "a PNG image"),
+        (bytes(range(256)), "a binary file"),
+        (b"title = 'caf\xc3\xa9'\n", None),  # UTF-8 text is text
+    ],
+)
+def test_binary_kind_names_the_usual_files(data, kind):
+    found = binary_kind(data)
+    assert found is None if kind is None else found.startswith(kind)
+
+
+def test_a_netcdf_file_given_as_the_case_is_one_line(tmp_path, capsys):
+    case = tmp_path / "results.nc"
+    case.write_bytes(HDF5)
+    out = tmp_path / "out"
+    assert main(["run", str(case), "-o", str(out)]) == 2
+    line = _one_error_line(capsys)
+    assert line.startswith(f"error: case = '{case}': a TOML case file, not a netCDF-4/HDF5 file")
+    assert "railvib template" in line  # what to do
+    assert not out.exists()
+
+
+def test_an_empty_case_file_says_so(tmp_path):
+    path = tmp_path / "empty.toml"
+    path.write_text("\n  \n")
+    with pytest.raises(CaseError, match="a TOML case file, not an empty file"):
+        read_toml(path, "case", "`railvib template > case.toml` writes one")
+
+
+# ---------------------------------------------------------------- item 1: RMS bands
+
+
+@pytest.mark.parametrize(
+    ("band", "holds"),
+    [
+        ([0.52, 0.58], 0),  # between two points of the 0.1 Hz grid
+        ([1500.0, 2000.0], 0),  # above the grid
+        ([0.1, 0.4], 0),  # below the grid
+        ([0.55, 0.65], 1),  # one point: the trapezoidal integral would be 0
+    ],
+)
+def test_rms_band_the_grid_cannot_resolve_is_refused_when_the_case_loads(band, holds):
+    with pytest.raises(CaseError) as info:
+        case_from_dict({"preset": "wang2017_metro", "output": {"rms_bands": [[1.0, 2.0], band]}})
+    assert info.value.field == "output.rms_bands[1]"
+    assert f"holds {holds})" in info.value.allowed
+    assert "[0.5, 1000] Hz" in info.value.allowed
+
+
+def test_a_band_reaching_past_the_grid_is_kept_as_before():
+    case = case_from_dict({"preset": "wang2017_metro", "output": {"rms_bands": [[500, 2000]]}})
+    assert case.output.rms_bands == [(500.0, 2000.0)]
+
+
+def test_bad_rms_band_writes_nothing(tmp_path, capsys):
+    case = tmp_path / "c.toml"
+    case.write_text('preset = "wang2017_metro"\n[output]\nrms_bands = [[1500, 2000]]\n')
+    out = tmp_path / "out"
+    assert main(["run", str(case), "-o", str(out), "--no-plots"]) == 2
+    line = _one_error_line(capsys)
+    assert re.match(r"error: output\.rms_bands\[0\] = \[1500\.0, 2000\.0\]: ", line)
+    assert not out.exists()
