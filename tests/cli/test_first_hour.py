@@ -94,3 +94,85 @@ def test_bad_rms_band_writes_nothing(tmp_path, capsys):
     line = _one_error_line(capsys)
     assert re.match(r"error: output\.rms_bands\[0\] = \[1500\.0, 2000\.0\]: ", line)
     assert not out.exists()
+
+
+# ---------------------------------------------------------------- item 1: pad fit on a case file
+
+
+def test_pad_fit_on_a_case_file_says_it_is_not_a_measurements_csv(tmp_path, capsys):
+    case = tmp_path / "my_case.toml"
+    assert main(["template"]) == 0
+    case.write_text(capsys.readouterr().out)
+    out = tmp_path / "out"
+    assert main(["pad", "fit", str(case), "-o", str(out)]) == 2
+    line = _one_error_line(capsys)
+    assert line.startswith(f"error: data = '{case}': a measurements CSV, not a TOML file")
+    assert "temperature_c, frequency_hz, storage_n_per_m or storage_kn_per_mm" in line
+    assert "railvib pad example" in line  # where a good file comes from
+    assert "title" not in line  # the case's first key is not read as a column
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("data", "message"),
+    [
+        (HDF5, "a measurements CSV (text), not a netCDF-4/HDF5 file"),
+        (b"", "it is empty"),
+        (b"a,b\n1,2\n", "whose header row names its columns (this one is 'a,b')"),
+        (
+            b"temperature_c,frequency_hz,storage_kn_per_mm,los_factor\n1,2,3,4\n",
+            "unknown column; columns from temperature_c,",
+        ),
+    ],
+)
+def test_measurements_csv_errors_name_the_file_and_the_columns(tmp_path, data, message):
+    from railvib.pads import read_measurements_csv
+
+    path = tmp_path / "d.csv"
+    path.write_bytes(data)
+    with pytest.raises(CaseError, match=re.escape(message)):
+        read_measurements_csv(path)
+
+
+# ---------------------------------------------------------------- item 7: did you mean
+
+
+@pytest.mark.parametrize(
+    ("overrides", "field", "suggestion"),
+    [
+        ({"speed_kmhh": 80.0}, "speed_kmhh", "speed_kmh"),  # pydantic: a fixed section
+        ({"vehicle": {"carbody_mas": 1.0}}, "vehicle.carbody_mas", "carbody_mass"),
+        ({"track": {"rail": {"shear_stifness": 1.0}}}, "track.rail.shear_stifness", None),
+        (  # a family table (Registry.from_dict)
+            {"track": {"pad": {"model": "spring_damper", "stiffness_n_per_m": 5e7, "dampin": 1}}},
+            "track.pad.dampin",
+            None,
+        ),
+        ({"track": {"pad": {"model": "fractional_zenr"}}}, "track.pad.model", "fractional_zener"),
+        (  # a plain table of a family (take_table)
+            {"track": {"pad": {"tts": {"reference_temperature": 20.0}}}},
+            "track.pad.tts.reference_temperature",
+            "reference_temperature_c",
+        ),
+        ({"irregularity": {"type": "fra", "clas_number": 5}}, "irregularity.clas_number", None),
+        ({"rail_model": "rail_pairs"}, "rail_model", "rail_pair"),
+        ({"preset": "wang2017_metr"}, "preset", "wang2017_metro"),
+    ],
+)
+def test_unknown_keys_and_names_suggest_the_closest(overrides, field, suggestion):
+    with pytest.raises(CaseError) as info:
+        case_from_dict({"preset": "wang2017_metro", **overrides})
+    assert info.value.field == field
+    if suggestion is None:  # the key itself, less its typo
+        suggestion = {
+            "track.rail.shear_stifness": "shear_stiffness",
+            "track.pad.dampin": "damping_ns_per_m",
+            "irregularity.clas_number": "class_number",
+        }[field]
+    assert info.value.allowed.endswith(f"; did you mean {suggestion!r}?")
+
+
+def test_no_suggestion_when_nothing_is_close():
+    with pytest.raises(CaseError) as info:
+        case_from_dict({"preset": "wang2017_metro", "colour": "red"})
+    assert "did you mean" not in str(info.value)

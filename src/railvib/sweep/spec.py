@@ -47,7 +47,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_dicts
 from railvib.case.errors import case_error
-from railvib.errors import CaseError, RailvibDeprecationWarning
+from railvib.errors import CaseError, RailvibDeprecationWarning, did_you_mean
 from railvib.io import read_toml
 from railvib.presets import load_preset
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
@@ -153,7 +153,10 @@ class SweepFile(_Model):
         for i, name in enumerate(self.variables):
             if name not in PER_FREQUENCY_VARIABLES:
                 raise CaseError(
-                    f"variables[{i}]", name, f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    f"variables[{i}]",
+                    name,
+                    f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    + did_you_mean(name, PER_FREQUENCY_VARIABLES),
                 )
         if self.base is None and self.case is None:
             raise CaseError("case", "<missing>", "a [case] table and/or base = PATH")
@@ -362,11 +365,17 @@ class SweepSpec:
         for i, name in enumerate(variables):
             if name not in PER_FREQUENCY_VARIABLES:
                 raise CaseError(
-                    f"variables[{i}]", name, f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    f"variables[{i}]",
+                    name,
+                    f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    + did_you_mean(name, PER_FREQUENCY_VARIABLES),
                 )
         if self.summary_variable not in SUMMARY_VARIABLES:
             raise CaseError(
-                "summary_variable", self.summary_variable, f"one of {', '.join(SUMMARY_VARIABLES)}"
+                "summary_variable",
+                self.summary_variable,
+                f"one of {', '.join(SUMMARY_VARIABLES)}"
+                + did_you_mean(self.summary_variable, SUMMARY_VARIABLES),
             )
         if not isinstance(self.base_case, Mapping):
             raise CaseError("base_case", type(self.base_case).__name__, "a resolved case table")
