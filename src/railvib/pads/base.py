@@ -184,12 +184,17 @@ class FitStart:
         Bounds of the scaled parameters.
     build : callable
         ``build(x)`` -> the pad model at scaled parameters `x`.
+    names : tuple of str
+        The case-file key of the parameter each scaled parameter sets (``"tau_s"``,
+        ``"k_n_per_m[2]"``), so a fit ending at a search bound can name it; empty:
+        they are called by their position.
     """
 
     x0: list[float]
     lower: list[float]
     upper: list[float]
     build: Callable[[NDArray[np.float64]], PadModel]
+    names: tuple[str, ...] = ()
 
 
 #: every pad model a case file can name (``[track.pad] model = "..."``)
