@@ -12,6 +12,7 @@ from railvib.case import case_from_dict
 from railvib.cli.main import main
 from railvib.errors import CaseError
 from railvib.io import binary_kind, read_toml
+from railvib.pads import PadModel
 
 HDF5 = b"\x89HDF\r\n\x1a\n" + bytes(range(256))  # the start of every netCDF-4 file
 
@@ -176,3 +177,58 @@ def test_no_suggestion_when_nothing_is_close():
     with pytest.raises(CaseError) as info:
         case_from_dict({"preset": "wang2017_metro", "colour": "red"})
     assert "did you mean" not in str(info.value)
+
+
+# ---------------------------------------------------------------- item 1: passivity and round-off
+
+COLD_ZENER = {
+    "model": "fractional_zener",
+    "k0_n_per_m": 4.0e7,
+    "k_inf_n_per_m": 2.0e8,
+    "tau_s": 1.0e-3,
+    "alpha": 0.4,
+    "tts": {"reference_temperature_c": 20.0, "glass_transition_c": -50.0},
+}
+
+
+def test_a_cold_wlf_pad_is_not_refused_for_round_off_in_its_loss():
+    # at -85 degC the shifted Zener is deep in its glassy plateau: K'' ~ 1e-17 |K*| on
+    # parts of the grid, computed with either sign; it used to be "a passive pad needs
+    # K' > 0 and K'' >= 0 ... K*(9.2 Hz) = 1.352e+08-6.609e-09j"
+    case = case_from_dict(
+        {"preset": "wang2017_metro", "track": {"pad": COLD_ZENER, "pad_temperature_c": -85.0}}
+    )
+    assert case.track.pad_temperature_c == -85.0
+
+
+def test_the_tolerance_is_a_few_roundings_of_the_modulus():
+    import numpy as np
+
+    from railvib.pads import PASSIVITY_TOLERANCE
+
+    eps = np.finfo(float).eps
+    assert PASSIVITY_TOLERANCE == 16 * eps  # a loss factor of -3.6e-15: no real pad
+
+
+class _GivesEnergyBelowMinus50(PadModel):
+    """A test pad whose loss factor (T + 50)/100 turns negative below -50 degC."""
+
+    def stiffness(self, f, temperature=None):
+        import numpy as np
+
+        eta = (20.0 if temperature is None else temperature + 50.0) / 100.0
+        return np.full(np.shape(f), 5e7 * (1 + 1j * eta))
+
+
+def test_a_really_non_passive_pad_names_temperature_frequency_and_why():
+    import numpy as np
+
+    pad = _GivesEnergyBelowMinus50()
+    pad.check_passive(np.array([1.0, 10.0]), -40.0)  # eta = 0.1
+    with pytest.raises(CaseError) as info:
+        pad.check_passive(np.array([1.0, 10.0]), -60.0)  # eta = -0.1
+    err = info.value
+    assert err.field == "track.pad"
+    assert err.value.startswith("K*(1 Hz, -60 degC) = 5e+07-5e+06j N/m")
+    assert "loss factor K''/K' = -0.1 < 0 gives energy to the track" in err.allowed
+    assert "round-off" in err.allowed  # the tolerance is stated
