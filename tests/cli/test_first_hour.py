@@ -232,3 +232,98 @@ def test_a_really_non_passive_pad_names_temperature_frequency_and_why():
     assert err.value.startswith("K*(1 Hz, -60 degC) = 5e+07-5e+06j N/m")
     assert "loss factor K''/K' = -0.1 < 0 gives energy to the track" in err.allowed
     assert "round-off" in err.allowed  # the tolerance is stated
+
+
+# ---------------------------------------------------------------- items 1 and 4: plot
+
+
+@pytest.fixture(scope="module")
+def sweep_folder(tmp_path_factory):
+    """A finished 2 x 2 sweep (temperature x speed) on a coarse grid, and a run folder."""
+    import copy
+
+    from railvib.sweep import run_sweep, sweep_from_dict
+    from tests.unit.sweep.sweep_cases import small_sweep
+
+    d = small_sweep(
+        axes=[
+            {"field": "track.pad_temperature_c", "name": "temperature", "values": [-20.0, 20.0]},
+            {"field": "speed_kmh", "name": "speed", "values": [40.0, 80.0]},
+        ]
+    )
+    d["case"] = copy.deepcopy(d["case"])
+    d["case"]["frequency"]["n"] = 30
+    out = tmp_path_factory.mktemp("sweep") / "s.sweep"
+    run_sweep(sweep_from_dict(d), out, workers=1, progress=False)
+    return out
+
+
+def _pngs(folder):
+    return sorted(p.name for p in folder.glob("*.png")) if folder.exists() else []
+
+
+def test_plot_with_x_equal_to_y_is_one_line(sweep_folder, tmp_path, capsys):
+    out = tmp_path / "p"
+    args = ["plot", str(sweep_folder), "--x", "temperature", "--y", "temperature", "-o", str(out)]
+    assert main(args) == 2
+    line = _one_error_line(capsys)
+    assert line == (
+        "error: y = 'temperature': a sweep dimension other than x = 'temperature': one of speed"
+    )
+    assert not out.exists()
+
+
+def test_plot_y_alone_takes_the_other_dimension_for_x(sweep_folder, tmp_path):
+    out = tmp_path / "p"
+    args = ["--y", "temperature", "-v", "peak", "-o", str(out)]
+    assert main(["plot", str(sweep_folder), *args]) == 0
+    assert len(_pngs(out)) == 3  # the three default responses, as heat maps
+
+
+def test_plot_on_a_run_folder_says_plot_takes_a_sweep(tmp_path, capsys):
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "results.nc").write_bytes(HDF5)
+    (run / "summary.md").write_text("|")
+    assert main(["plot", str(run)]) == 2
+    line = _one_error_line(capsys)
+    assert line.startswith(f"error: sweep = '{run}': a sweep folder (written by `railvib sweep`)")
+    assert "this is a folder of `railvib run`, which draws its PSD plots itself" in line
+    assert not (run / "plots").exists()
+
+
+def test_plot_on_an_unfinished_sweep_says_rerun(tmp_path, capsys):
+    (tmp_path / "manifest.json").write_text("{}")
+    assert main(["sweep", "plot", str(tmp_path)]) == 2
+    assert "this sweep is unfinished (no sweep.zarr yet)" in _one_error_line(capsys)
+
+
+def test_plot_accepts_comma_separated_and_repeated_options(sweep_folder, tmp_path):
+    out = tmp_path / "p"
+    args = ["-v", "peak,rms_20_100_hz", "-r", "wheelset2.bounce,rail@wheel1", "-r", "bogie1.bounce"]
+    assert main(["plot", str(sweep_folder), *args, "-o", str(out)]) == 0
+    assert _pngs(out) == sorted(
+        f"sweep_{v}_{r}.png"
+        for v in ("peak", "rms_20_100_hz")
+        for r in ("wheelset2_bounce", "rail_at_wheel1", "bogie1_bounce")
+    )
+
+
+def test_a_bad_variable_among_good_ones_writes_no_plot(sweep_folder, tmp_path, capsys):
+    out = tmp_path / "p"
+    assert main(["plot", str(sweep_folder), "-v", "peak,rms_20_100", "-o", str(out)]) == 2
+    assert "did you mean 'rms_20_100_hz'?" in _one_error_line(capsys)
+    assert _pngs(out) == []
+
+
+def test_plot_help_lists_real_labels_as_the_default(sweep_folder):
+    from railvib.cli.sweep import plot
+    from railvib.sweep import load_sweep_dataset
+
+    option = next(p for p in plot.params if p.name == "responses")
+    default = re.search(r"\[default: ([^\]]*)\]", option.help).group(1).split(", ")
+    labels = {str(r) for r in load_sweep_dataset(sweep_folder)["response"].values}
+    assert default == ["carbody.bounce", "wheelset1.bounce", "rail@wheel1"]
+    shown = re.findall(r"[a-z0-9]+(?:\.bounce|\.pitch|@wheel\d)", option.help)
+    assert len(shown) > 10
+    assert set(shown) <= labels  # every label the help shows is one plot accepts
