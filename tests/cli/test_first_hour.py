@@ -327,3 +327,38 @@ def test_plot_help_lists_real_labels_as_the_default(sweep_folder):
     shown = re.findall(r"[a-z0-9]+(?:\.bounce|\.pitch|@wheel\d)", option.help)
     assert len(shown) > 10
     assert set(shown) <= labels  # every label the help shows is one plot accepts
+
+
+# ---------------------------------------------------------------- item 2: the Dask extra
+
+
+def test_scheduler_without_distributed_is_one_line_before_any_work(
+    sweep_folder, tmp_path, capsys, monkeypatch
+):
+    import sys
+
+    import tomli_w
+
+    from tests.unit.sweep.sweep_cases import small_sweep
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # as if the extra were missing
+    path = tmp_path / "s.toml"
+    path.write_text(tomli_w.dumps(small_sweep()))
+    out = tmp_path / "out"
+    assert main(["sweep", str(path), "-o", str(out), "--scheduler", "tcp://127.0.0.1:1"]) == 2
+    assert _one_error_line(capsys) == (
+        "error: scheduler = 'tcp://127.0.0.1:1': a Dask cluster needs the \"distributed\" "
+        'package: pip install "railvib[sweep]"'
+    )
+    assert not out.exists()
+
+
+def test_the_readme_error_example_is_what_the_cli_prints(tmp_path, capsys):
+    from pathlib import Path
+
+    readme = Path(__file__).resolve().parents[2] / "README.md"
+    shown = re.search(r"\$ railvib run bad\.toml\n(error: .*)\n", readme.read_text()).group(1)
+    bad = tmp_path / "bad.toml"
+    bad.write_text('preset = "wang2017_metro"\n[vehicle]\ncarbody_mass = -1.0\n')
+    assert main(["run", str(bad), "-o", str(tmp_path / "out")]) == 2
+    assert _one_error_line(capsys) == shown

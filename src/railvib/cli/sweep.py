@@ -75,6 +75,7 @@ def run_command(
 ) -> None:
     """Run SWEEP_FILE; rerunning the same command resumes an interrupted sweep."""
     from railvib.sweep import (
+        check_scheduler,
         default_output_folder,
         describe_run,
         load_sweep,
@@ -83,6 +84,7 @@ def run_command(
     )
 
     spec = load_sweep(sweep_file)
+    check_scheduler(scheduler)  # before anything is said or written
     out = outdir if outdir is not None else default_output_folder(sweep_file)
     click.echo(describe_run(spec, out, scheduler=scheduler), err=True)
     try:
