@@ -362,3 +362,144 @@ def test_the_readme_error_example_is_what_the_cli_prints(tmp_path, capsys):
     bad.write_text('preset = "wang2017_metro"\n[vehicle]\ncarbody_mass = -1.0\n')
     assert main(["run", str(bad), "-o", str(tmp_path / "out")]) == 2
     assert _one_error_line(capsys) == shown
+
+
+# ---------------------------------------------------------------- item 3: validate
+
+
+def _system(**overrides):
+    from railvib.case import build_system
+
+    return build_system(case_from_dict({"preset": "wang2017_metro", **overrides}))
+
+
+@pytest.mark.parametrize(
+    ("overrides", "field", "value"),
+    [
+        (
+            {"track": {"pad": COLD_ZENER}},
+            "track.pad.model",
+            "fractional_zener (with [track.pad.tts])",
+        ),
+        (
+            {
+                "track": {
+                    "pad": {"model": "hysteretic", "stiffness_n_per_m": 5e7, "loss_factor": 0.2}
+                }
+            },
+            "track.pad.model",
+            "hysteretic",
+        ),
+        ({"track": {"rail": {"shear_stiffness": 2.45e8}}}, "track.rail.shear_stiffness", 2.45e8),
+        ({"track": {"rail": {"loss_factor": 0.01}}}, "track.rail.loss_factor", 0.01),
+    ],
+)
+def test_validate_scope_names_the_users_model_before_computing(overrides, field, value):
+    from railvib.validation import check_scope
+
+    with pytest.raises(CaseError) as info:
+        check_scope(_system(**overrides))
+    assert (info.value.field, info.value.value) == (field, value)
+    assert "railvib validate" in info.value.allowed
+
+
+def test_validate_scope_takes_the_two_rail_doubling_of_a_viscous_pad():
+    from railvib.validation import check_scope
+    from railvib.validation.scope import viscous_pad
+
+    system = _system(rail_model="rail_pair")
+    check_scope(system)  # used to fail in the Monte Carlo: "track.pad.model = 'scaled'"
+    assert viscous_pad(system.track.pad) == (2 * 5.0e7, 2 * 5.0e4)  # both rails' pads
+
+
+def test_validate_out_of_scope_is_one_line_before_any_work(tmp_path, capsys, monkeypatch):
+    import railvib.validation.compare as compare
+
+    def must_not_run(*args, **kwargs):
+        raise AssertionError("computed before refusing the case")
+
+    monkeypatch.setattr(compare, "_finite_track_comparison", must_not_run)
+    case = tmp_path / "zener.toml"
+    case.write_text(
+        'preset = "wang2017_metro"\n[track.pad]\nmodel = "fractional_zener"\nk0_n_per_m = 4e7\n'
+        "k_inf_n_per_m = 2e8\ntau_s = 1e-3\nalpha = 0.4\n"
+        "tts = { reference_temperature_c = 20.0, glass_transition_c = -50.0 }\n"
+    )
+    out = tmp_path / "out"
+    assert main(["validate", str(case), "-o", str(out)]) == 2
+    line = _one_error_line(capsys)  # no progress bar either
+    assert line.startswith(
+        "error: track.pad.model = 'fractional_zener (with [track.pad.tts])': spring_damper"
+    )
+    assert "temperature_shifted" not in line
+    assert not out.exists()
+
+
+def test_finite_track_frf_reports_each_frequency():
+    import numpy as np
+
+    from railvib.validation import FiniteCoupledSystem
+
+    finite = FiniteCoupledSystem.from_system(_system(), margin_spans=10)
+    done = []
+    finite.frf(np.array([5.0, 50.0, 500.0]), progress=done.append)
+    assert done == [1, 1, 1]
+
+
+def _fake_result():
+    import numpy as np
+    import xarray as xr
+
+    from railvib.validation import ValidationResult
+
+    labels = [
+        *(f"{b}.{d}" for b in ("carbody", "bogie1", "bogie2") for d in ("bounce", "pitch")),
+        *(f"wheelset{j}.bounce" for j in range(1, 5)),
+        *(f"rail@wheel{j}" for j in range(1, 5)),
+    ]
+    f = np.geomspace(1.0, 500.0, 5)
+    grid = {"frequency": f, "response": labels}
+    ones = np.ones((f.size, len(labels)))
+    frf = xr.Dataset({"relative_error": (("frequency", "response"), 1e-4 * ones)}, coords=grid)
+    mc = xr.Dataset(
+        {n: (("frequency", "response"), ones.astype(bool)) for n in ("inside", "inside_raw")},
+        coords=grid,
+    )
+    return ValidationResult(frf=frf, mc=mc, table=xr.Dataset(), timings={})
+
+
+def test_agreement_text_fits_an_80_column_terminal():
+    from railvib.validation import agreement_text
+
+    text = agreement_text(_fake_result(), "paper_case", "validation/paper_case_agreement.md")
+    lines = text.splitlines()
+    assert max(len(line) for line in lines) <= 80
+    assert lines[0] == "Agreement per response (paper_case)"
+    assert lines[2].split() == ["carbody.bounce", "1.00e-04", "100.0%", "100.0%"]
+    assert lines[-2] == "Acceptance (issue 5): PASSED (FE error <= 2%, PEM in band >= 90%)"
+    assert lines[-1] == "per-band tables and timings: validation/paper_case_agreement.md"
+
+
+def test_validate_shows_both_stages_and_the_compact_table(tmp_path, capsys, monkeypatch):
+    import railvib.cli.validate as cli_validate
+    from railvib.validation import ValidationSettings
+
+    calls = {}
+
+    def fake(system, spectrum, outdir, *, settings, seed, progress, name, frf_progress):
+        frf_progress(settings.n_frf)
+        progress(10)
+        calls["settings"] = settings
+        return _fake_result()
+
+    monkeypatch.setattr(cli_validate, "validate_to_folder", fake)
+    monkeypatch.setenv("COLUMNS", "80")
+    case = tmp_path / "metro.toml"
+    case.write_text('preset = "wang2017_metro"\n')
+    assert main(["validate", str(case), "--quick", "-o", str(tmp_path / "v")]) == 0
+    out = capsys.readouterr().out
+    assert calls["settings"] == ValidationSettings.quick()
+    assert "finite track (frequencies)" in out
+    assert "Monte Carlo (Newmark steps)" in out
+    assert "| response |" not in out  # no Markdown table on the terminal
+    assert max(len(line) for line in out.splitlines()) <= 80
