@@ -503,3 +503,58 @@ def test_validate_shows_both_stages_and_the_compact_table(tmp_path, capsys, monk
     assert "Monte Carlo (Newmark steps)" in out
     assert "| response |" not in out  # no Markdown table on the terminal
     assert max(len(line) for line in out.splitlines()) <= 80
+
+
+# ---------------------------------------------------------------- item 5: the template
+
+
+def _key_lines(text):
+    """``(line number, line)`` of every key, commented-out key and table header."""
+    for i, line in enumerate(text.splitlines()):
+        bare = line.removeprefix("# ")
+        if re.match(r"^\[[a-z_.]+\]$", line) or re.match(r"^[a-z_0-9]+ = ", bare):
+            yield i, line
+
+
+@pytest.mark.parametrize("preset", ["wang2017_metro", "wang2017_temp_m10c"])
+def test_template_comments_stand_right_above_what_they_document(preset):
+    from railvib.case.template import render_template
+
+    lines = render_template(preset).splitlines()
+    body = lines[lines.index("") + 1 :]  # after the file's header block
+    for i, line in _key_lines("\n".join(body)):
+        above = body[i - 1]
+        assert above.startswith("# "), f"{line!r} has no comment right above it"
+        assert not re.match(r"^# [a-z_0-9]+ = ", above), f"{line!r} is under another key"
+        if line.startswith("["):
+            assert body[i - 2] == "" or body[i - 2].startswith("# "), line
+
+
+def test_template_documents_every_irregularity_key_and_writes_bands_inline():
+    from railvib.case.template import render_template
+    from railvib.spectra import SPECTRA
+
+    text = render_template()
+    lines = text.splitlines()
+    for spectrum in ("combined", "fra", "shitai"):
+        for p in SPECTRA.get(spectrum).parameters:
+            if p.kind == "member":  # a nested table: its description above its header
+                i = lines.index(f"[irregularity.{p.key}]")
+                assert lines[i - 1].startswith(f"# {p.doc} ["), lines[i - 1]
+                continue
+            i = next(j for j, line in enumerate(lines) if re.match(rf"^(# )?{p.key} = ", line))
+            assert lines[i - 1].startswith(f"# {p.doc}"), (p.key, lines[i - 1])
+    assert "rms_bands = [[0.5, 20.0], [20.0, 100.0], [100.0, 1000.0]]" in lines
+    assert "# coefficient = 0.036" in lines  # an optional key left out is shown, commented
+
+
+def test_template_still_loads_as_its_preset(tmp_path):
+    import railvib
+    from railvib.case import load_case
+    from railvib.case.template import render_template
+    from railvib.presets import list_presets
+
+    for name in list_presets():
+        path = tmp_path / f"{name}.toml"
+        path.write_text(render_template(name))
+        assert load_case(path) == railvib.load_preset_case(name), name

@@ -17,7 +17,8 @@ def _default_folders():
     for name, command in _commands(cli):
         for param in command.params:
             if param.name in ("outdir", "output") and isinstance(param.default, Path):
-                yield name, param.default
+                if param.default != Path("."):  # pad example: a file the user asked for, here
+                    yield name, param.default
     yield "sweep run", default_output_folder(Path("my_sweep.toml"))  # <stem>.sweep
 
 

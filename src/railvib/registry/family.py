@@ -310,7 +310,7 @@ class Registry(Generic[T]):
 
         # -- documentation ------------------------------------------------------------------
 
-    def template_lines(self, d: Mapping[str, Any], header: str) -> list[str]:
+    def template_lines(self, d: Mapping[str, Any], header: str, doc: str = "") -> list[str]:
         """Lines of a commented TOML table for `d` under ``[header]`` (nested tables follow).
 
         Parameters
@@ -319,13 +319,15 @@ class Registry(Generic[T]):
             The table.
         header : str
             Dotted name of the table, e.g. ``"track.pad"``.
+        doc : str
+            What the table is for, first in the comment above the header.
 
         Returns
         -------
         list of str
-            TOML lines with ``#`` comments.
+            TOML lines with ``#`` comments, each right above what it documents.
         """
-        return docs.template_lines(self, d, header)
+        return docs.template_lines(self, d, header, doc)
 
     def markdown(self) -> str:
         """A Markdown section per member: its description and a table of its keys."""
