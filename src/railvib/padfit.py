@@ -8,15 +8,18 @@ from pathlib import Path
 
 import numpy as np
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 from railvib.io import save_figure, write_text
 from railvib.pads import (
     DEFAULT_EXPANSION_COEFFICIENT_PER_K,
+    MODEL_ALIASES,
+    PADS,
     WLF,
     LogLinearFit,
     ModelFit,
     fit_log_linear,
     fit_pad,
+    fittable_models,
     pad_toml,
     read_measurements_csv,
     wj7_example_csv,
@@ -101,6 +104,15 @@ class PadFitJob:
     f0_hz: float = 5.0
 
     def __post_init__(self) -> None:
+        fittable = fittable_models()
+        if self.model not in PADS or PADS.get(self.model).name not in fittable:
+            aliases = [a for a, n in MODEL_ALIASES.items() if n in fittable]
+            close = did_you_mean(self.model, [*fittable, *aliases])
+            raise CaseError(
+                "model",
+                self.model,
+                f"one of {', '.join(fittable)} (aliases {', '.join(aliases)}){close}",
+            )
         if len(self.band_hz) != 2:
             raise CaseError("pad_fit.band_hz (--band)", self.band_hz, "two frequencies (Hz)")
         self.wlf()  # a contradictory WLF choice is refused before any fitting

@@ -45,7 +45,14 @@ def load_case(path: str | Path) -> Case:
     """
     path = Path(path)
     hint = "`railvib template > case.toml` writes one"
-    return case_from_dict(read_toml(path, "case", hint), base_dir=path.parent)
+    data = read_toml(path, "case", hint)
+    if "axes" in data:
+        raise CaseError(
+            "case",
+            str(path),
+            "a case file; this is a sweep file ([[axes]]): run it with `railvib sweep`",
+        )
+    return case_from_dict(data, base_dir=path.parent)
 
 
 def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> Case:

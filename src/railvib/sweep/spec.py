@@ -505,7 +505,19 @@ def load_sweep(path: str | Path) -> SweepSpec:
     """
     path = Path(path)
     hint = "docs/sweeps.md shows one"
-    return sweep_from_dict(read_toml(path, "sweep", hint), base_dir=path.parent)
+    data = read_toml(path, "sweep", hint)
+    if "axes" not in data and "case" not in data and "base" not in data and _CASE_KEYS & set(data):
+        raise CaseError(
+            "sweep",
+            str(path),
+            "a sweep file ([case] or base = PATH, and [[axes]]); this is a case file: run it "
+            f'with `railvib run`, or write base = "{path.name}" in a sweep file ({hint})',
+        )
+    return sweep_from_dict(data, base_dir=path.parent)
+
+
+#: top-level keys of a case file (a case given where a sweep file is expected)
+_CASE_KEYS = {"preset", "rail_model", "speed_kmh", "vehicle", "track", "irregularity"}
 
 
 def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> SweepSpec:
