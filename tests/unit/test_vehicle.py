@@ -49,7 +49,8 @@ def test_rigid_track_frequencies_match_closed_forms(paper_vehicle):
     )
     expected = np.sort(np.concatenate([bounce, pitch, [f_bogie_pitch, f_bogie_pitch]]))
     np.testing.assert_allclose(clamped_wheel_frequencies(paper_vehicle), expected, rtol=1e-10)
-    # docs/reference-values.md §2 (wheels on k_H rather than clamped): body bounce 0.766, pitch 0.909 Hz
+    # docs/reference-values.md §2 (wheels on k_H rather than clamped): body bounce 0.766,
+    # pitch 0.909 Hz
     np.testing.assert_allclose(expected[:2], [0.766, 0.909], atol=2e-3)
 
 

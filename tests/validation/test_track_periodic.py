@@ -48,7 +48,7 @@ def winkler_receptance(f, x, ei=EI, m=M, s=S_WINKLER, c=C_WINKLER):
 
 @pytest.mark.validation
 def test_winkler_formula_reproduces_published_numbers():
-    # docs/reference-values.md §3.1 table (4 significant digits given): check our own reference first
+    # docs/reference-values.md §3.1 table (4 significant digits): check our own reference first
     f = np.array([10.0, 50.0, 100.0, 186.6, 300.0, 1000.0, 2000.0])
     expected = [7.997e-9, 8.114e-9, 8.304e-9, 7.093e-9, 4.065e-9, 6.491e-10, 2.282e-10]
     got = np.abs(winkler_receptance(f, 0.0))

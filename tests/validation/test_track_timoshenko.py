@@ -33,7 +33,8 @@ def pinned_pinned_timoshenko_hz():
 
 
 def test_closed_form_matches_the_reference_value():
-    # docs/reference-values.md §3.3: a Timoshenko CHN60 rail gives f_pp of about 1071 Hz (vs 1441.7 Euler)
+    # docs/reference-values.md §3.3: a Timoshenko CHN60 rail gives f_pp of about 1071 Hz
+    # (vs 1441.7 Euler)
     assert pinned_pinned_timoshenko_hz() == pytest.approx(1071.0, rel=0.01)
 
 

@@ -19,7 +19,7 @@ from railvib.pads import (
 )
 
 TRUE_BASE = FractionalZener(3e7, 6e8, 1e-7, 0.35)
-TRUE_WLF = WLF(8.064, 111.6, 20.0)  # docs/reference-values.md §4: Tg = -40 degC re-referenced to 20 degC
+TRUE_WLF = WLF(8.064, 111.6, 20.0)  # docs/reference-values.md §4: Tg = -40 degC at 20 degC
 
 
 def synthetic(freqs=None, temps=None):

@@ -18,7 +18,8 @@ from railvib.pads import (
 
 
 def test_rereferencing_from_tg_matches_worked_example():
-    # docs/reference-values.md §4: Tg = -40, reference 20 degC -> Delta = 60 K, C1' = 8.064, C2' = 111.6 K
+    # docs/reference-values.md §4: Tg = -40, reference 20 degC -> Delta = 60 K,
+    # C1' = 8.064, C2' = 111.6 K
     w = WLF.universal(-40.0).rereferenced(20.0)
     assert w.c1 == pytest.approx(17.44 * 51.6 / (51.6 + 60.0))  # Eq. 23 (corrected), by hand
     assert w.c1 == pytest.approx(8.064, abs=5e-4)  # the note rounds to 3 decimals
@@ -26,7 +27,8 @@ def test_rereferencing_from_tg_matches_worked_example():
     assert w.reference_temperature_c == 20.0
 
 
-# docs/reference-values.md §4 table: a 0.3 Hz test at T maps to these 20 degC frequencies (3 significant digits)
+# docs/reference-values.md §4 table: a 0.3 Hz test at T maps to these 20 degC frequencies
+# (3 significant digits)
 REDUCED_TG40 = [
     (17.5, 0.46),
     (10.0, 1.87),
