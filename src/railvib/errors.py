@@ -12,6 +12,7 @@ from typing import Any
 
 __all__ = [
     "CaseError",
+    "LinearModelInvalid",
     "RailvibDeprecationWarning",
     "RailvibError",
     "SolverWarning",
@@ -21,6 +22,18 @@ __all__ = [
 
 class RailvibError(Exception):
     """Base class of every railvib error."""
+
+    #: exit code of the command line when this error ends a command
+    exit_code: int = 2
+
+
+class LinearModelInvalid(RailvibError):
+    """A result lies beyond the linear model (``--strict``): loss of contact above the threshold.
+
+    The results are written all the same; the command line exits with code 3.
+    """
+
+    exit_code = 3
 
 
 class CaseError(RailvibError, ValueError):

@@ -11,7 +11,7 @@ import pandas as pd
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib.case import Case, build_grid, build_spectrum, build_system, load_case
+from railvib.case import Case, build_grid, build_spectrum, build_system, case_header, load_case
 from railvib.coupling import CoupledSystem
 from railvib.errors import RailvibDeprecationWarning
 from railvib.grid import FrequencyGrid
@@ -20,15 +20,20 @@ from railvib.outputs import (
     DEFAULT_OUTPUTS,
     LOSS_OF_CONTACT_NOTE,
     ContactCheck,
+    contact_line,
+    contact_table,
     derive,
+    is_linear_model_valid,
     linearity_note,
 )
 from railvib.results.dataset import build_dataset, save_csv, save_netcdf
-from railvib.results.stats import summary
+from railvib.results.report import summary_csv, summary_markdown, summary_text
+from railvib.results.stats import summary, summary_table
 from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
     "LOSS_OF_CONTACT_NOTE",
+    "PSD_CSV",
     "RunOutput",
     "case_toml",
     "contact_check",
@@ -49,6 +54,8 @@ def run_system(
     grid: FrequencyGrid,
     spectrum: SpatialSpectrum,
     attrs: dict[str, str] | None = None,
+    *,
+    loss_of_contact_threshold: float = LOSS_OF_CONTACT_NOTE,
 ) -> xr.Dataset:
     """Response PSDs and FRFs of a coupled system under a stationary irregularity.
 
@@ -62,11 +69,15 @@ def run_system(
         Irregularity spectrum (spatial, one-sided).
     attrs : dict, optional
         Extra global attributes.
+    loss_of_contact_threshold : float
+        Largest probability of loss of contact (dimensionless) for which the result is
+        flagged ``linear_model_valid`` (:class:`railvib.outputs.ContactCheck`).
 
     Returns
     -------
     xarray.Dataset
-        See :func:`railvib.results.build_dataset`.
+        See :func:`railvib.results.build_dataset`; with the contact check
+        (``contact_force_rms``, ``loss_of_contact_probability``, ``linear_model_valid``).
     """
     f = grid.f
     frf = system.frf(f)
@@ -94,7 +105,8 @@ def run_system(
         "sign_convention": "displacements positive downward; irregularity > 0 is a dip",
         **(attrs or {}),
     }
-    return derive(build_dataset(frf, s_r, attrs=meta, extra=extra), DEFAULT_OUTPUTS)
+    settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
+    return derive(build_dataset(frf, s_r, attrs=meta, extra=extra), DEFAULT_OUTPUTS, settings)
 
 
 def contact_check(
@@ -172,6 +184,7 @@ def run(case: Case | str | Path) -> xr.Dataset:
         build_grid(case),
         build_spectrum(case),
         attrs={"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
+        loss_of_contact_threshold=case.output.loss_of_contact_threshold,
     )
 
 
@@ -184,25 +197,47 @@ class RunOutput:
     dataset : xarray.Dataset
         The result (see :func:`run`).
     summary : pandas.DataFrame
-        Peak, dominant frequency and RMS per response (see :func:`railvib.summary`).
+        Peak, dominant frequency and RMS per response, each with its unit
+        (:func:`railvib.results.stats.summary_table`).
     files : tuple of pathlib.Path
         Every file written.
     notes : tuple of str
         Warnings for the reader (e.g. likely loss of contact).
+    header : tuple of str
+        The case lines heading every summary (:func:`railvib.case.case_header`).
+    contact : str
+        The contact-check line (:func:`railvib.outputs.contact_line`).
     """
 
     dataset: xr.Dataset
     summary: pd.DataFrame
     files: tuple[Path, ...]
     notes: tuple[str, ...]
+    header: tuple[str, ...] = ()
+    contact: str = ""
+
+    @property
+    def linear_model_valid(self) -> bool:
+        """Whether the case is within the linear model (loss of contact <= the threshold)."""
+        return is_linear_model_valid(self.dataset)
+
+    def text(self) -> str:
+        """The summary as ``railvib run`` prints it: the case, the table, the contact check."""
+        footer = [self.contact] if self.contact else []
+        return summary_text(self.summary, self.header, [*footer, *self.notes])
+
+
+#: the PSD tables ``railvib run`` writes beside the dataset (file stem = variable)
+PSD_CSV = ("psd_acceleration", "psd_displacement", "psd_force")
 
 
 def run_to_folder(case: Case | str | Path, outdir: str | Path, *, plots: bool = True) -> RunOutput:
     """Run one case and write its dataset, summary and plots to `outdir` (``railvib run``).
 
     Writes ``results.nc``, ``psd_acceleration.csv``, ``psd_displacement.csv``,
-    ``summary.csv``, ``summary.md`` and, with `plots`, one PNG per response group,
-    each atomically.
+    ``psd_force.csv``, ``summary.csv`` and ``summary.md`` (each headed by the case:
+    :func:`railvib.case.case_header`, and the contact check) and, with `plots`, the
+    overview figures (:func:`railvib.plot.psd.save_overview`), each atomically.
 
     Parameters
     ----------
@@ -221,17 +256,23 @@ def run_to_folder(case: Case | str | Path, outdir: str | Path, *, plots: bool = 
         case = load_case(case)
     outdir = Path(outdir)
     ds = run(case)
-    table = summary(ds, bands=case.output.rms_bands).to_dataframe()
+    table = summary_table(summary(ds, bands=case.output.rms_bands))
+    header = case_header(case)
+    contact = contact_line(ds)
+    contacts = [("Contact check per wheel", contact_table(ds))]
     files = [
         save_netcdf(ds, outdir / "results.nc"),
-        save_csv(ds, outdir / "psd_acceleration.csv"),
-        save_csv(ds, outdir / "psd_displacement.csv", variable="psd_displacement"),
-        write_text(outdir / "summary.csv", table.to_csv(float_format="%.6g")),
-        write_text(outdir / "summary.md", table.to_markdown(floatfmt=".4g") + "\n"),
+        *(save_csv(ds, outdir / f"{name}.csv", variable=name) for name in PSD_CSV),
+        write_text(outdir / "summary.csv", summary_csv(table, header, [contact])),
+        write_text(
+            outdir / "summary.md",
+            summary_markdown(table, header, [contact], title=case.title, extra=contacts),
+        ),
     ]
     if plots:
         from railvib.plot.psd import save_overview  # matplotlib: only when plotting
 
         files += save_overview(ds, outdir)
     note = linearity_note(ds)
-    return RunOutput(ds, table, tuple(files), () if note is None else (note,))
+    notes = () if note is None else (note,)
+    return RunOutput(ds, table, tuple(files), notes, tuple(header), contact)

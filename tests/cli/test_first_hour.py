@@ -558,3 +558,12 @@ def test_template_still_loads_as_its_preset(tmp_path):
         path = tmp_path / f"{name}.toml"
         path.write_text(render_template(name))
         assert load_case(path) == railvib.load_preset_case(name), name
+
+
+def test_bands_a_preset_brings_that_the_grid_cannot_hold_say_where_they_come_from():
+    with pytest.raises(CaseError) as info:
+        case_from_dict({"preset": "wang2017_metro", "frequency": {"f_min": 1.0, "f_max": 50.0}})
+    assert info.value.field == "output.rms_bands[2]"
+    assert "the bands are those of preset 'wang2017_metro': set [output] rms_bands for this" in (
+        info.value.allowed
+    )

@@ -9,6 +9,7 @@ from railvib.case.build import (
     build_vehicle,
     contact_stiffness,
 )
+from railvib.case.header import case_header
 from railvib.case.load import case_from_dict, load_case, merge_case_dicts
 from railvib.case.schema import Case
 
@@ -21,6 +22,7 @@ __all__ = [
     "build_track",
     "build_vehicle",
     "case_from_dict",
+    "case_header",
     "contact_stiffness",
     "load_case",
     "merge_case_dicts",

@@ -71,6 +71,9 @@ def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> 
     """
     data = copy.deepcopy(data)
     preset = data.pop("preset", None)
+    output = data.get("output")
+    given = isinstance(output, dict) and "rms_bands" in output
+    bands_from = "" if given else f"preset {preset!r}" if preset is not None else "the default"
     if preset is not None:
         data = merge_case_dicts(load_preset(preset), data)
     if base_dir is not None:
@@ -79,7 +82,7 @@ def case_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> 
         case = Case.model_validate(data)
     except ValidationError as exc:
         raise case_error(exc, Case) from None
-    _check_models(case)
+    _check_models(case, bands_from)
     return case
 
 
@@ -115,7 +118,7 @@ def _table_at(data: Any, location: tuple[str, ...]) -> Any:
     return data
 
 
-def _check_models(case: Case) -> None:
+def _check_models(case: Case, bands_from: str = "") -> None:
     """Build every family table of the case, and evaluate the pad on the case's grid.
 
     So an unknown model, a bad parameter, a pad that is not passive somewhere on
@@ -126,7 +129,7 @@ def _check_models(case: Case) -> None:
     for location, family in FAMILY_TABLES.items():
         family.from_dict(_table_at(data, location), ".".join(location))
     grid = build_grid(case)
-    _check_bands(case, grid.f)
+    _check_bands(case, grid.f, bands_from)
     temperature = case.track.pad_temperature_c
     try:
         build_pad(case).check_passive(grid.f, temperature, field="track.pad")
@@ -136,22 +139,28 @@ def _check_models(case: Case) -> None:
         raise CaseError("track.pad_temperature_c", temperature, exc.allowed) from None
 
 
-def _check_bands(case: Case, f: NDArray[np.float64]) -> None:
+def _check_bands(case: Case, f: NDArray[np.float64], bands_from: str = "") -> None:
     """Each ``[output] rms_bands`` band holds at least two frequencies of the case's grid.
 
     A band outside the grid or between two grid points has no trapezoidal integral
     (and one grid point would give an RMS of 0); it is refused when the case is
     loaded, so a run writes all its outputs or none. A band reaching past the grid
-    is integrated over the part on the grid, as before.
+    is integrated over the part on the grid, as before. `bands_from` names where bands
+    the case file did not set came from (``"preset 'wang2017_metro'"``), so the message
+    says to set them for this grid.
     """
     fr = case.frequency
     for i, (lo, hi) in enumerate(case.output.rms_bands):
         inside = int(np.count_nonzero((f >= lo) & (f <= hi)))
         if inside < 2:
+            fix = (
+                f"the bands are those of {bands_from}: set [output] rms_bands for this grid"
+                if bands_from
+                else "widen or move the band, or change [frequency]"
+            )
             raise CaseError(
                 f"output.rms_bands[{i}]",
                 [lo, hi],
                 f"a band holding at least two frequencies of the grid [{fr.f_min:g}, "
-                f"{fr.f_max:g}] Hz (this one holds {inside}); widen or move the band, or "
-                "change [frequency] (Hz)",
+                f"{fr.f_max:g}] Hz (this one holds {inside}); {fix} (Hz)",
             )

@@ -15,7 +15,8 @@ from pydantic import Field, model_validator
 
 from railvib.case.sections import Section, section_model, table_section
 from railvib.errors import CaseError
-from railvib.registry import Registry
+from railvib.outputs import ContactCheck
+from railvib.registry import Registry, declared_parameters
 from railvib.spectra import SPECTRA
 from railvib.track import DEFAULT_TRACK_MODEL, TRACKS, Rail
 from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES
@@ -98,6 +99,10 @@ class FrequencySection(Section):
         return self
 
 
+#: the threshold of the contact check, declared once with :class:`~railvib.outputs.ContactCheck`
+_THRESHOLD = {p.key: p for p in declared_parameters(ContactCheck)}["loss_of_contact_threshold"]
+
+
 class OutputSection(Section):
     """What the summary reports."""
 
@@ -105,6 +110,14 @@ class OutputSection(Section):
         default_factory=lambda: [(0.5, 20.0), (20.0, 100.0), (100.0, 1000.0)],
         description="frequency bands [f_lo, f_hi] for the RMS in the summary",
         json_schema_extra={"unit": "Hz"},
+    )
+    loss_of_contact_threshold: float = Field(
+        default=float(_THRESHOLD.default),
+        gt=_THRESHOLD.gt,
+        lt=_THRESHOLD.lt,
+        description=_THRESHOLD.doc.split(";")[0] + "; above it the case is flagged "
+        "linear_model_valid = false (railvib run --strict exits with code 3)",
+        json_schema_extra={"unit": _THRESHOLD.unit},
     )
 
     @model_validator(mode="after")

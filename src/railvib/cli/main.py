@@ -30,11 +30,17 @@ def cli() -> None:
 @click.argument("case_file", type=click.Path(dir_okay=False, path_type=Path))
 @output_option(Path("railvib-out"))
 @click.option("--no-plots", is_flag=True, help="skip the PNG figures")
-def run(case_file: Path, outdir: Path, no_plots: bool) -> None:
+@click.option(
+    "--strict",
+    is_flag=True,
+    help="exit with code 3 when the case is beyond the linear model (loss of contact above "
+    "output.loss_of_contact_threshold); the results are written all the same",
+)
+def run(case_file: Path, outdir: Path, no_plots: bool, strict: bool) -> None:
     """Run CASE_FILE and write the dataset, summary and PSD plots to OUTPUT."""
     from railvib.cli.run import run_case_command
 
-    run_case_command(case_file, outdir, plots=not no_plots)
+    run_case_command(case_file, outdir, plots=not no_plots, strict=strict)
 
 
 @cli.command()
@@ -108,7 +114,7 @@ _register_optional()
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point: run the CLI; a RailvibError becomes one line on stderr and exit code 2.
+    """Entry point: run the CLI; a RailvibError becomes one line on stderr and its exit code.
 
     Parameters
     ----------
@@ -118,14 +124,16 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        Exit code: 0 on success, 2 for a RailvibError or a usage error (both one line
-        ``error: ...`` on stderr), 130 when aborted, else click's code.
+        Exit code: 0 on success, 2 for a RailvibError (bad input) or a usage error (both
+        one line ``error: ...`` on stderr), 3 when ``--strict`` finds a result beyond the
+        linear model (:class:`~railvib.errors.LinearModelInvalid`), 130 when aborted, else
+        click's code.
     """
     try:
         cli.main(args=argv, standalone_mode=False)
     except RailvibError as exc:
         click.echo(f"error: {exc}", err=True)
-        return 2
+        return exc.exit_code
     except click.exceptions.Abort:
         click.echo("aborted", err=True)
         return 130

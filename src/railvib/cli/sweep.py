@@ -62,6 +62,12 @@ def sweep() -> None:
     help="discard finished chunks of a DIFFERENT sweep in OUT instead of refusing",
 )
 @click.option("--no-progress", is_flag=True, help="no progress bar")
+@click.option(
+    "--strict",
+    is_flag=True,
+    help="exit with code 3 when a case is beyond the linear model (loss of contact above "
+    "output.loss_of_contact_threshold); the results are written all the same",
+)
 def run_command(
     sweep_file: Path,
     outdir: Path | None,
@@ -72,12 +78,16 @@ def run_command(
     csv: bool,
     overwrite: bool,
     no_progress: bool,
+    strict: bool,
 ) -> None:
     """Run SWEEP_FILE; rerunning the same command resumes an interrupted sweep."""
+    from railvib.errors import LinearModelInvalid
+    from railvib.outputs import is_linear_model_valid
     from railvib.sweep import (
         check_scheduler,
         default_output_folder,
         describe_run,
+        linear_model_line,
         load_sweep,
         run_sweep,
         save_sweep_extras,
@@ -106,7 +116,9 @@ def run_command(
     assert ds is not None  # run_sweep assembles by default
     for path in save_sweep_extras(ds, out, netcdf=netcdf, csv=csv, plots=make_plots):
         click.echo(f"written {path}", err=True)
-    click.echo(f"written {out}/sweep.zarr", err=True)
+    click.echo(f"written {out}/sweep.zarr; {linear_model_line(ds)}", err=True)
+    if strict and not is_linear_model_valid(ds):
+        raise LinearModelInvalid(f"--strict: {linear_model_line(ds)}")
 
 
 @click.command("plot")

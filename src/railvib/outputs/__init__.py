@@ -5,7 +5,15 @@ Each output is a registered member of :data:`OUTPUTS` in a module of its own;
 """
 
 from railvib.outputs.base import DEFAULT_OUTPUTS, OUTPUTS, DerivedOutput, derive
-from railvib.outputs.contact import LOSS_OF_CONTACT_NOTE, ContactCheck, linearity_note
+from railvib.outputs.contact import (
+    LOSS_OF_CONTACT_NOTE,
+    ContactCheck,
+    contact_line,
+    contact_table,
+    is_linear_model_valid,
+    linearity_note,
+    loss_of_contact_threshold,
+)
 
 __all__ = [
     "DEFAULT_OUTPUTS",
@@ -13,6 +21,10 @@ __all__ = [
     "OUTPUTS",
     "ContactCheck",
     "DerivedOutput",
+    "contact_line",
+    "contact_table",
     "derive",
+    "is_linear_model_valid",
     "linearity_note",
+    "loss_of_contact_threshold",
 ]

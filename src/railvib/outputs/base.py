@@ -9,8 +9,8 @@ variables, each with ``units`` and ``long_name``.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from collections.abc import Sequence
-from typing import ClassVar
+from collections.abc import Mapping, Sequence
+from typing import Any, ClassVar
 
 import xarray as xr
 
@@ -48,8 +48,12 @@ OUTPUTS: Registry[DerivedOutput] = Registry(
 DEFAULT_OUTPUTS = ("contact_check",)
 
 
-def derive(ds: xr.Dataset, names: Sequence[str] = DEFAULT_OUTPUTS) -> xr.Dataset:
-    """`ds` with the variables of the derived outputs `names` (default settings) added.
+def derive(
+    ds: xr.Dataset,
+    names: Sequence[str] = DEFAULT_OUTPUTS,
+    settings: Mapping[str, Mapping[str, Any]] | None = None,
+) -> xr.Dataset:
+    """`ds` with the variables of the derived outputs `names` added.
 
     Parameters
     ----------
@@ -57,6 +61,10 @@ def derive(ds: xr.Dataset, names: Sequence[str] = DEFAULT_OUTPUTS) -> xr.Dataset
         A result dataset.
     names : sequence of str
         Registered outputs.
+    settings : mapping, optional
+        Output name -> its settings (constructor arguments, in the units of their
+        declarations, e.g. ``{"contact_check": {"loss_of_contact_threshold": 0.05}}``);
+        an output not named takes its defaults.
 
     Returns
     -------
@@ -65,5 +73,6 @@ def derive(ds: xr.Dataset, names: Sequence[str] = DEFAULT_OUTPUTS) -> xr.Dataset
     """
     out = ds.copy()
     for name in names:
-        out = out.assign(OUTPUTS.get(name).build().compute(out))
+        kwargs = dict((settings or {}).get(name, {}))
+        out = out.assign(OUTPUTS.get(name).build(**kwargs).compute(out))
     return out

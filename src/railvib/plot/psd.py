@@ -1,7 +1,16 @@
-"""PSD plots. Functions take result datasets, draw on ``ax`` (created if None), return axes."""
+"""PSD plots. Functions take result datasets, draw on ``ax`` (created if None), return axes.
+
+:func:`save_overview` writes the figures of ``railvib run``: one per response
+group (bounce accelerations of the car body, bogies, wheelsets and the rail under
+the wheels; the pitch accelerations in rad-based units), the contact-force PSDs,
+the irregularity PSD applied and the pad's storage stiffness and loss factor, on a
+log frequency axis, with y-limits from the data (:func:`psd_ylim`) and a title
+stating the case and its speed.
+"""
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -9,21 +18,89 @@ import matplotlib
 
 matplotlib.use("Agg", force=False)
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+from numpy.typing import ArrayLike  # noqa: E402
 
 from railvib.io import save_figure  # noqa: E402
 from railvib.response import rail_label  # noqa: E402
+from railvib.results.units import QUANTITY_UNITS, quantity_unit  # noqa: E402
 
-__all__ = ["OVERVIEW_GROUPS", "axis_label", "plot_psd", "save_overview"]
+__all__ = [
+    "OVERVIEW_GROUPS",
+    "PSD_DECADES",
+    "axis_label",
+    "case_title",
+    "overview_figures",
+    "plot_irregularity_psd",
+    "plot_pad_stiffness",
+    "plot_psd",
+    "plot_wheel_psd",
+    "psd_ylim",
+    "save_overview",
+]
 
-#: (file stem, title, responses) of the overview figures written by ``railvib run``
+#: (file stem, title, responses) of the response figures written by ``railvib run``
 OVERVIEW_GROUPS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
     ("psd_carbody", "Car body", ("carbody.bounce",)),
     ("psd_bogie", "Bogies", ("bogie1.bounce", "bogie2.bounce")),
     ("psd_wheelset", "Wheelsets", tuple(f"wheelset{i}.bounce" for i in range(1, 5))),
     ("psd_rail", "Rail under the wheels", tuple(rail_label(i) for i in range(1, 5))),
+    ("psd_pitch", "Pitch", ("carbody.pitch", "bogie1.pitch", "bogie2.pitch")),
 )
+
+#: decades of PSD shown below the peak by :func:`psd_ylim`
+PSD_DECADES = 8.0
+
+_KN_PER_MM = 1e6  # N/m
+
+
+def psd_ylim(values: ArrayLike, decades: float = PSD_DECADES) -> tuple[float, float] | None:
+    """Y-limits of a log PSD axis from the data: ``(peak / 10**decades, 2 * peak)``.
+
+    Parameters
+    ----------
+    values : array_like
+        The PSD values drawn, in their unit (e.g. (m/s^2)^2/Hz); zeros, negative and
+        non-finite values are ignored.
+    decades : float
+        Decades shown below the peak (dimensionless, decades of the PSD).
+
+    Returns
+    -------
+    (float, float) or None
+        The limits, in the unit of `values`; None when no value is positive.
+    """
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v) & (v > 0)]
+    if v.size == 0:
+        return None
+    top = float(v.max())
+    return top / 10.0**decades, 2.0 * top
+
+
+def case_title(ds: xr.Dataset) -> str:
+    """The title and speed of a run from its attributes: ``"<title> - 80 km/h (22.22 m/s)"``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result of :func:`railvib.run` (attributes ``title``, ``speed_m_per_s``).
+
+    Returns
+    -------
+    str
+        The title; the speed in km/h and m/s where known.
+    """
+    title = str(ds.attrs.get("title", "")).strip()
+    speed = ds.attrs.get("speed_m_per_s")
+    if speed is None:
+        return title
+    v = float(speed)
+    text = f"{v * 3.6:.4g} km/h ({v:.4g} m/s)"
+    return f"{title} - {text}" if title else text
 
 
 def axis_label(da: xr.DataArray) -> str:
@@ -44,6 +121,25 @@ def axis_label(da: xr.DataArray) -> str:
     return f"{name} [{unit}]" if unit else str(name)
 
 
+def _unit(ds: xr.Dataset, variable: str, responses: Sequence[str]) -> str:
+    """The unit of `variable` for `responses`: one unit, or each distinct one joined by ``; ``."""
+    da = ds[variable]
+    unit = str(da.attrs.get("units", ""))
+    if variable in QUANTITY_UNITS and unit == quantity_unit(variable):
+        found = list(dict.fromkeys(quantity_unit(variable, str(r)) for r in responses))
+        return "; ".join(found)
+    return unit
+
+
+def _limits(ax: Axes, values: ArrayLike, ylim: tuple[float, float] | str | None) -> None:
+    if ylim == "auto":
+        auto = psd_ylim(values)
+        if auto is not None:
+            ax.set_ylim(*auto)
+    elif ylim is not None and not isinstance(ylim, str):
+        ax.set_ylim(*ylim)
+
+
 def plot_psd(
     ds: xr.Dataset,
     responses: Sequence[str],
@@ -53,6 +149,7 @@ def plot_psd(
     xlim: tuple[float, float] | None = None,
     logx: bool = False,
     label: str = "",
+    ylim: tuple[float, float] | str | None = None,
     **line_kw: object,
 ) -> Axes:
     """Plot PSDs of `responses` against frequency on a log PSD axis.
@@ -73,12 +170,16 @@ def plot_psd(
         Logarithmic frequency axis.
     label : str
         Prefix of the legend labels (e.g. the case name).
+    ylim : (float, float), "auto" or None
+        PSD axis limits in the unit of `variable`; ``"auto"``: from the data drawn
+        (:func:`psd_ylim`); None: matplotlib's.
     **line_kw
         Passed to ``Axes.plot``.
 
     Returns
     -------
     matplotlib.axes.Axes
+        The y-label carries the unit of the responses drawn (rad-based for pitch).
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(7, 4))
@@ -91,22 +192,190 @@ def plot_psd(
     ax.set_yscale("log")
     if logx:
         ax.set_xscale("log")
+    _limits(ax, da.sel(response=list(responses)).values, ylim)
     ax.set_xlabel(axis_label(ds["frequency"]))
-    ax.set_ylabel(axis_label(ds[variable]))
+    name = da.attrs.get("long_name", variable)
+    ax.set_ylabel(f"{name} [{_unit(ds, variable, responses)}]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize="small", loc="upper right")
     return ax
 
 
-def save_overview(ds: xr.Dataset, outdir: str | Path) -> list[Path]:
-    """Write one PNG per response group (car body, bogies, wheelsets, rail) to `outdir`.
+def plot_wheel_psd(
+    ds: xr.Dataset,
+    variable: str = "psd_force",
+    *,
+    ax: Axes | None = None,
+    logx: bool = True,
+    ylim: tuple[float, float] | str | None = "auto",
+) -> Axes:
+    """Plot a PSD over ``wheel`` (the contact forces) against frequency, one line per wheel.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset.
+    variable : str
+        A ``(frequency, wheel)`` PSD, e.g. ``psd_force`` (N^2/Hz).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+    logx : bool
+        Logarithmic frequency axis.
+    ylim : (float, float), "auto" or None
+        PSD axis limits in the unit of `variable` (see :func:`plot_psd`).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7, 4))
+    da = ds[variable]
+    for wheel in da["wheel"].values:
+        ax.plot(da["frequency"], da.sel(wheel=wheel), label=f"wheel {wheel}")
+    ax.set_yscale("log")
+    if logx:
+        ax.set_xscale("log")
+    _limits(ax, da.values, ylim)
+    ax.set_xlabel(axis_label(ds["frequency"]))
+    ax.set_ylabel(axis_label(da))
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize="small", loc="upper right")
+    return ax
+
+
+def plot_irregularity_psd(
+    ds: xr.Dataset,
+    *,
+    ax: Axes | None = None,
+    logx: bool = True,
+    ylim: tuple[float, float] | str | None = "auto",
+) -> Axes:
+    """Plot the temporal irregularity PSD the run applied (m^2/Hz) against frequency.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset (its ``irregularity_psd``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+    logx : bool
+        Logarithmic frequency axis.
+    ylim : (float, float), "auto" or None
+        PSD axis limits in m^2/Hz (see :func:`plot_psd`).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7, 4))
+    da = ds["irregularity_psd"]
+    ax.plot(da["frequency"], da, color="k")
+    ax.set_yscale("log")
+    if logx:
+        ax.set_xscale("log")
+    _limits(ax, da.values, ylim)
+    ax.set_xlabel(axis_label(ds["frequency"]))
+    ax.set_ylabel(axis_label(da))
+    ax.grid(True, which="both", alpha=0.3)
+    return ax
+
+
+def plot_pad_stiffness(
+    ds: xr.Dataset, *, axes: tuple[Axes, Axes] | None = None, logx: bool = True
+) -> tuple[Axes, Axes]:
+    """Plot the pad's storage stiffness K'(f) (kN/mm) and loss factor K''/K' (-) of a run.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset (its complex ``pad_stiffness``, N/m, at the case's temperature).
+    axes : (Axes, Axes), optional
+        Axes for K' and the loss factor; a new two-panel figure when None.
+    logx : bool
+        Logarithmic frequency axis.
+
+    Returns
+    -------
+    (matplotlib.axes.Axes, matplotlib.axes.Axes)
+    """
+    if axes is None:
+        _, axes = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
+    ax_k, ax_eta = axes
+    k = np.asarray(ds["pad_stiffness"].values)
+    f = ds["frequency"].values
+    ax_k.plot(f, k.real / _KN_PER_MM, color="C0")
+    ax_eta.plot(f, k.imag / k.real, color="C1")
+    ax_k.set_ylabel("storage stiffness K' [kN/mm]")
+    ax_eta.set_ylabel("loss factor K''/K' [-]")
+    ax_eta.set_xlabel(axis_label(ds["frequency"]))
+    for ax in axes:
+        if logx:
+            ax.set_xscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+    return ax_k, ax_eta
+
+
+def _titled(fig: Figure, ax: Axes, ds: xr.Dataset, what: str) -> Figure:
+    ax.set_title(what)
+    fig.suptitle("\n".join(textwrap.wrap(case_title(ds), 90)), fontsize="medium")
+    return fig
+
+
+def overview_figures(ds: xr.Dataset, *, logx: bool = True) -> list[tuple[str, Figure]]:
+    """The figures of ``railvib run``, not yet saved: ``(file stem, figure)`` pairs.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset of :func:`railvib.run`.
+    logx : bool
+        Logarithmic frequency axes (the default of ``railvib run``).
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        One per group of :data:`OVERVIEW_GROUPS` with a response in `ds` (PSD axis
+        from :func:`psd_ylim`), then ``psd_force`` (contact forces),
+        ``irregularity_psd`` and ``pad_stiffness`` where `ds` has them; each titled
+        with the case and its speed (:func:`case_title`).
+    """
+    out: list[tuple[str, Figure]] = []
+    labels = {str(r) for r in ds["response"].values}
+    for stem, title, responses in OVERVIEW_GROUPS:
+        present = [r for r in responses if r in labels]
+        if not present:
+            continue
+        fig, ax = plt.subplots(figsize=(7, 4.3))
+        plot_psd(ds, present, ax=ax, logx=logx, ylim="auto")
+        out.append((stem, _titled(fig, ax, ds, title)))
+    if "psd_force" in ds:
+        fig, ax = plt.subplots(figsize=(7, 4.3))
+        plot_wheel_psd(ds, "psd_force", ax=ax, logx=logx)
+        out.append(("psd_force", _titled(fig, ax, ds, "Wheel-rail contact forces")))
+    if "irregularity_psd" in ds:
+        fig, ax = plt.subplots(figsize=(7, 4.3))
+        plot_irregularity_psd(ds, ax=ax, logx=logx)
+        out.append(("irregularity_psd", _titled(fig, ax, ds, "Irregularity applied")))
+    if "pad_stiffness" in ds:
+        fig, (ax_k, ax_eta) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
+        plot_pad_stiffness(ds, axes=(ax_k, ax_eta), logx=logx)
+        out.append(("pad_stiffness", _titled(fig, ax_k, ds, "Railpad (beam model)")))
+    return out
+
+
+def save_overview(ds: xr.Dataset, outdir: str | Path, *, logx: bool = True) -> list[Path]:
+    """Write the figures of :func:`overview_figures` as ``<stem>.png`` to `outdir`.
 
     Parameters
     ----------
     ds : xarray.Dataset
         A result dataset of :func:`railvib.run`.
     outdir : str or pathlib.Path
-        Folder for the PNG files (``<stem>.png`` of :data:`OVERVIEW_GROUPS`).
+        Folder for the PNG files (each through :func:`railvib.io.save_figure`).
+    logx : bool
+        Logarithmic frequency axes.
 
     Returns
     -------
@@ -114,13 +383,6 @@ def save_overview(ds: xr.Dataset, outdir: str | Path) -> list[Path]:
         The files written; a group with none of its responses in `ds` is skipped.
     """
     outdir = Path(outdir)
-    written = []
-    for stem, title, responses in OVERVIEW_GROUPS:
-        present = [r for r in responses if r in ds["response"].values]
-        if not present:
-            continue
-        fig, ax = plt.subplots(figsize=(7, 4))
-        plot_psd(ds, present, ax=ax)
-        ax.set_title(title)
-        written.append(save_figure(fig, outdir / f"{stem}.png"))
-    return written
+    return [
+        save_figure(fig, outdir / f"{stem}.png") for stem, fig in overview_figures(ds, logx=logx)
+    ]

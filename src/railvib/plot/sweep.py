@@ -21,9 +21,20 @@ from matplotlib.colors import LogNorm  # noqa: E402
 
 from railvib.errors import CaseError, did_you_mean  # noqa: E402
 from railvib.io import save_figure  # noqa: E402
+from railvib.outputs import loss_of_contact_threshold  # noqa: E402
 from railvib.plot import DEFAULT_SWEEP_RESPONSES  # noqa: E402
 
-__all__ = ["DEFAULT_RESPONSES", "plot_sweep", "save_axes", "save_sweep_plots", "sweep_dims"]
+__all__ = [
+    "DEFAULT_RESPONSES",
+    "INVALID_GID",
+    "plot_sweep",
+    "save_axes",
+    "save_sweep_plots",
+    "sweep_dims",
+]
+
+#: ``gid`` of the markers that cross out the cases beyond the linear model
+INVALID_GID = "linear_model_invalid"
 
 #: responses drawn by :func:`save_sweep_plots` when present
 DEFAULT_RESPONSES = DEFAULT_SWEEP_RESPONSES
@@ -113,9 +124,11 @@ def plot_sweep(
         A sweep dataset.
     variable : str
         Summary variable: ``peak`` (PSD units), ``dominant_frequency`` (Hz),
-        ``rms`` or ``rms_<lo>_<hi>_hz`` (m/s^2).
+        ``rms`` or ``rms_<lo>_<hi>_hz`` (m/s^2; rad/s^2 for a pitch response), or one of
+        the contact check: ``contact_force_rms`` (N) and ``loss_of_contact_probability``
+        (drawn for the worst wheel), ``linear_model_valid``.
     response : str or sequence of str
-        Response label(s); a heat map takes one.
+        Response label(s); a heat map takes one. Ignored by the contact-check variables.
     x, y : str, optional
         Sweep dimensions for the horizontal and vertical axes (default: the
         first one or two dimensions with more than one value).
@@ -129,14 +142,25 @@ def plot_sweep(
     Returns
     -------
     matplotlib.axes.Axes
+        Cases beyond the linear model (``linear_model_valid`` false) are crossed out
+        with red ``x`` markers (``gid`` :data:`INVALID_GID`, one legend entry): a
+        scatter over lines, a marker line over a heat map.
     """
     responses, dims, x, y = _resolve(ds, variable, response, x, y, kind)
     keep = {x} | ({y} if y else set())
     pick = {d: int((sel or {}).get(d, 0)) for d in dims if d not in keep}
     da = ds[variable].isel(pick)
+    per_response = "response" in da.dims
+    if not per_response:
+        if "wheel" in da.dims:
+            da = da.max("wheel", keep_attrs=True)
+            da.attrs["long_name"] = f"{da.attrs.get('long_name', variable)}, worst wheel"
+        da = da.astype(float).expand_dims(response=[variable]).assign_attrs(da.attrs)
+        responses = [variable]
+    invalid = _invalid(ds, pick) if variable != "linear_model_valid" else None
     if ax is None:
         _, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
-    unit = da.attrs.get("units", "")
+    unit = _unit(ds, da, responses) if per_response else da.attrs.get("units", "")
     long_name = da.attrs.get("long_name", variable)
     xv, xlabel = _axis_values(ds, x)
     fixed = ", ".join(
@@ -144,11 +168,25 @@ def plot_sweep(
         for d, i in pick.items()
     )
     if y is None:
-        for r in responses:
-            ax.plot(xv, da.sel(response=r).transpose(x).values, marker="o", ms=3, label=r)
+        for i, r in enumerate(responses):
+            yvals = da.sel(response=r).transpose(x).values
+            ax.plot(xv, yvals, marker="o", ms=3, label=r)
+            if invalid is not None:  # a scatter: ax.lines keeps one line per response
+                bad = invalid.transpose(x).values
+                ax.scatter(
+                    np.asarray(xv)[bad],
+                    yvals[bad],
+                    marker="x",
+                    s=80,
+                    linewidths=2,
+                    color="red",
+                    zorder=3,
+                    gid=INVALID_GID,
+                    label=_invalid_label(ds) if i == 0 and bad.any() else "_nolegend_",
+                )
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"{long_name} [{unit}]")
-        if variable != "dominant_frequency":
+        if variable not in ("dominant_frequency", "linear_model_valid"):
             ax.set_yscale("log")
         ax.legend(fontsize="small")
         ax.grid(True, which="both", alpha=0.3)
@@ -166,12 +204,55 @@ def plot_sweep(
             ax.set_xticks(np.arange(len(xv)) + 0.5, [str(v) for v in xv], rotation=45)
             ax.set_yticks(np.arange(len(yv)) + 0.5, [str(v) for v in yv])
         ax.figure.colorbar(mesh, ax=ax, label=f"{long_name} [{unit}]")
+        if invalid is not None:
+            bad = invalid.transpose(y, x).values
+            jj, ii = np.nonzero(bad)
+            if numeric:
+                px, py = np.asarray(xv)[ii], np.asarray(yv)[jj]
+            else:
+                px, py = ii + 0.5, jj + 0.5
+            ax.plot(  # markers, not a collection: ax.collections keeps the heat map alone
+                px,
+                py,
+                ls="none",
+                marker="x",
+                ms=10,
+                mew=2,
+                color="red",
+                gid=INVALID_GID,
+                label=_invalid_label(ds),
+            )
+            if bad.any():
+                ax.legend(fontsize="small", loc="upper right")
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
         fixed = f"{responses[0]}" + (f"; {fixed}" if fixed else "")
     if fixed:
         ax.set_title(fixed, fontsize="small")
     return ax
+
+
+def _invalid(ds: xr.Dataset, pick: Mapping[str, int]) -> xr.DataArray | None:
+    """True where a case is beyond the linear model (None: the sweep has no contact check)."""
+    if "linear_model_valid" not in ds:
+        return None
+    return ~ds["linear_model_valid"].isel(pick).astype(bool)
+
+
+def _invalid_label(ds: xr.Dataset) -> str:
+    return (
+        f"beyond the linear model (loss of contact > {100 * loss_of_contact_threshold(ds):.3g} %)"
+    )
+
+
+def _unit(ds: xr.Dataset, da: xr.DataArray, responses: Sequence[str]) -> str:
+    """The unit of `da` for `responses` (from its per-response units coordinate if any)."""
+    coord = da.attrs.get("units_coordinate")
+    if coord is None or coord not in ds.coords:
+        return str(da.attrs.get("units", ""))
+    units = dict(zip(ds["response"].values, ds[coord].values, strict=True))
+    found = list(dict.fromkeys(str(units[r]) for r in responses))
+    return "; ".join(found)
 
 
 def save_axes(ax: Axes, path: str | Path) -> Path:
@@ -204,7 +285,9 @@ def save_sweep_plots(
     """Write one PNG per (variable, response): heat map if two axes vary, else lines.
 
     The files are ``sweep_<variable>_<response>.png`` (``.`` -> ``_``, ``@`` ->
-    ``_at_``), drawn by :func:`plot_sweep`.
+    ``_at_``), drawn by :func:`plot_sweep`; a variable of the contact check (no
+    ``response`` dimension) is one figure, ``sweep_<variable>.png``. Cases beyond the
+    linear model are crossed out in every figure.
 
     Parameters
     ----------
@@ -239,6 +322,11 @@ def save_sweep_plots(
     outdir.mkdir(parents=True, exist_ok=True)
     written = []
     for variable in variables:
+        if variable in ds.data_vars and "response" not in ds[variable].dims:
+            path = outdir / f"sweep_{variable}.png"  # a case's contact check: one figure
+            save_axes(plot_sweep(ds, variable, responses[:1] or labels[:1], x=x, y=y), path)
+            written.append(path)
+            continue
         for r in responses:
             path = outdir / f"sweep_{variable}_{r.replace('@', '_at_').replace('.', '_')}.png"
             save_axes(plot_sweep(ds, variable, r, x=x, y=y), path)

@@ -11,9 +11,17 @@ from numpy.typing import NDArray
 
 from railvib.io import atomic_path
 from railvib.response import FRF, displacement_unit
+from railvib.results.units import QUANTITY_UNITS, quantity_unit, with_unit_coordinates
 from railvib.results.variables import VARIABLES, compute_variables
 
-__all__ = ["atomic_path", "build_dataset", "load_netcdf", "save_csv", "save_netcdf"]
+__all__ = [
+    "atomic_path",
+    "build_dataset",
+    "column_units",
+    "load_netcdf",
+    "save_csv",
+    "save_netcdf",
+]
 
 PSD_CONVENTION = "one-sided, per Hz, temporal (variance = integral of the PSD over f from 0 to inf)"
 
@@ -42,7 +50,11 @@ def build_dataset(
     -------
     xarray.Dataset
         Dims ``frequency`` (Hz), ``response`` and ``wheel``; every variable of
-        :data:`railvib.results.variables.VARIABLES` with its units.
+        :data:`railvib.results.variables.VARIABLES` with its units. A variable whose
+        unit differs between responses (m and rad) names, in its ``units_coordinate``
+        attribute, the coordinate over ``response`` with the unit of each response
+        (``psd_acceleration_unit``, ``psd_displacement_unit``, ``frf_displacement_unit``;
+        :mod:`railvib.results.units`).
     """
     labels = list(frf.labels)
     coords = {
@@ -58,6 +70,7 @@ def build_dataset(
     values = compute_variables(frf, irregularity_psd, VARIABLES)
     data = {name: (var.dims, values[name], var.attrs) for name, var in VARIABLES.items()}
     ds = xr.Dataset(data, coords=coords, attrs={"psd_convention": PSD_CONVENTION, **(attrs or {})})
+    ds = with_unit_coordinates(ds, {name: name for name in VARIABLES if name in QUANTITY_UNITS})
     for name, da in (extra or {}).items():
         ds[name] = da
     return ds
@@ -160,8 +173,33 @@ def load_netcdf(path: str | Path) -> xr.Dataset:
     return ds.drop_vars("part", errors="ignore")
 
 
+def column_units(da: xr.DataArray) -> list[str]:
+    """Unit of each column of a ``(frequency, response)`` or ``(frequency, wheel)`` variable.
+
+    Parameters
+    ----------
+    da : xarray.DataArray
+        A variable of a result dataset, with a ``units`` attribute; named after its
+        quantity (``psd_acceleration``, ...) for per-response units.
+
+    Returns
+    -------
+    list of str
+        The unit of each entry along the second dimension: from
+        :func:`railvib.results.units.quantity_unit` for a response variable of the
+        units table whose ``units`` attribute is railvib's, else the ``units`` attribute.
+    """
+    unit = str(da.attrs.get("units", ""))
+    other = [d for d in da.dims if d != "frequency"]
+    entries = [str(c) for c in da[other[0]].values] if other else [""]
+    name = str(da.name)
+    if other == ["response"] and name in QUANTITY_UNITS and unit == quantity_unit(name):
+        return [quantity_unit(name, label) for label in entries]
+    return [unit] * len(entries)
+
+
 def save_csv(ds: xr.Dataset, path: str | Path, variable: str = "psd_acceleration") -> Path:
-    """Write one (frequency x response) variable as a CSV table, atomically.
+    """Write one (frequency x response) or (frequency x wheel) variable as a CSV table, atomically.
 
     Parameters
     ----------
@@ -170,17 +208,22 @@ def save_csv(ds: xr.Dataset, path: str | Path, variable: str = "psd_acceleration
     path : str or pathlib.Path
         CSV file to write.
     variable : str
-        A variable with dims ``(frequency, response)``, e.g. ``"psd_displacement"``.
+        A variable with dims ``(frequency, response)``, e.g. ``"psd_displacement"``, or
+        ``(frequency, wheel)``, e.g. ``"psd_force"``.
 
     Returns
     -------
     pathlib.Path
-        `path`. Columns are headed ``<response> [<units>]``, rows ``frequency [Hz]``.
+        `path`. Columns are headed ``<response> [<unit of that response>]`` (pitch
+        columns in rad-based units, :func:`column_units`) or ``wheel<j> [<units>]``,
+        rows ``frequency [Hz]``.
     """
     da = ds[variable]
+    units = column_units(da)
+    da = da.drop_vars([c for c in da.coords if c not in da.dims])
     df = da.to_pandas()
-    unit = da.attrs.get("units", "")
-    df.columns = [f"{c} [{unit}]" for c in df.columns]
+    prefix = "wheel" if "wheel" in da.dims else ""
+    df.columns = [f"{prefix}{c} [{u}]" for c, u in zip(df.columns, units, strict=True)]
     df.index.name = "frequency [Hz]"
     path = Path(path)
     with atomic_path(path) as tmp:

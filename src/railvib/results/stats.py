@@ -5,12 +5,28 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
+import pandas as pd
 import xarray as xr
 from scipy.integrate import trapezoid
 
 from railvib.docstrings import fill_doc
+from railvib.results.units import (
+    QUANTITY_UNITS,
+    quantity_unit,
+    rms_quantity,
+    summary_quantity,
+    with_unit_coordinates,
+)
 
-__all__ = ["band_rms", "dominant_frequency", "peak", "summary", "summary_attrs", "summary_names"]
+__all__ = [
+    "band_rms",
+    "dominant_frequency",
+    "peak",
+    "summary",
+    "summary_attrs",
+    "summary_names",
+    "summary_table",
+]
 
 #: parameter documentation shared by the statistics (:func:`railvib.docstrings.fill_doc`)
 _SHARED = {
@@ -94,10 +110,6 @@ def band_rms(psd: xr.DataArray, band: tuple[float, float] | None = None) -> xr.D
     return xr.DataArray(np.sqrt(var), dims=dims, coords=coords)
 
 
-#: RMS unit of each PSD variable (the square root of the PSD integrated over Hz)
-_RMS_UNITS = {"psd_acceleration": "m/s^2", "psd_displacement": "m", "psd_force": "N"}
-
-
 def summary_names(bands: Sequence[Sequence[float]]) -> list[str]:
     """Names of the variables :func:`summary` returns for RMS bands `bands` (Hz)."""
     return ["peak", "dominant_frequency", "rms"] + [f"rms_{lo:g}_{hi:g}_hz" for lo, hi in bands]
@@ -113,10 +125,17 @@ def summary_attrs(name: str, variable: str, psd_units: str) -> dict[str, str]:
     variable : str
         The PSD summarised, e.g. ``"psd_acceleration"``.
     psd_units : str
-        Units of that PSD.
+        Units of that PSD (of its translational responses).
+
+    Returns
+    -------
+    dict of str
+        ``units`` (of the translational responses, :func:`railvib.results.units.quantity_unit`),
+        ``long_name`` and, where pitch responses differ, a ``note``.
     """
     what = variable.removeprefix("psd_")
-    rms_units = _RMS_UNITS.get(variable, f"sqrt({psd_units}*Hz)")
+    amplitude = rms_quantity(variable)
+    rms_units = quantity_unit(amplitude) if amplitude else f"sqrt({psd_units}*Hz)"
     note = {"note": "pitch responses are in rad-based units"}
     if name == "peak":
         return {"units": psd_units, "long_name": f"peak {what} PSD", **note}
@@ -148,19 +167,68 @@ def summary(
     -------
     xarray.Dataset
         Variables ``peak``, ``dominant_frequency``, ``rms`` and ``rms_<lo>_<hi>_hz``
-        (see :func:`summary_names`), with units.
+        (see :func:`summary_names`), with units. Where the unit differs between
+        responses (pitch in rad-based units), the unit of each response is in a
+        coordinate over ``response`` named by the variable's ``units_coordinate``
+        attribute (``psd_acceleration_unit`` for the peak, ``acceleration_unit`` for
+        the RMS values of an acceleration PSD; :mod:`railvib.results.units`).
     """
     psd = ds[variable]
     unit = str(psd.attrs.get("units", ""))
+    psd = psd.drop_vars([c for c in psd.coords if str(c).endswith("_unit")])
     names = summary_names(bands)
     values = [peak(psd), dominant_frequency(psd), band_rms(psd)]
     values += [band_rms(psd, (lo, hi)) for lo, hi in bands]
-    return xr.Dataset(
+    out = xr.Dataset(
         {
             name: da.assign_attrs(summary_attrs(name, variable, unit))
             for name, da in zip(names, values, strict=True)
         }
     )
+    if variable not in QUANTITY_UNITS or unit != quantity_unit(variable):
+        return out  # units not in the table (or not railvib's): the PSD's unit for every row
+    quantities = {name: summary_quantity(name, variable) for name in names}
+    return with_unit_coordinates(out, {k: v for k, v in quantities.items() if v is not None})
+
+
+def summary_table(stats: xr.Dataset) -> pd.DataFrame:
+    """The summary of one run as a table: one row per response, every figure with its unit.
+
+    Columns: ``peak`` and ``peak_unit`` (the PSD's unit of that row, e.g.
+    (m/s^2)^2/Hz or (rad/s^2)^2/Hz), ``dominant_frequency [Hz]``, ``rms`` and
+    ``rms_<lo>_<hi>_hz`` (RMS over the grid and over each band, Hz) and ``rms_unit``
+    (their unit in that row, e.g. m/s^2 or rad/s^2).
+
+    Parameters
+    ----------
+    stats : xarray.Dataset
+        The result of :func:`summary` (over ``response`` only).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by ``response``.
+    """
+    labels = [str(r) for r in stats["response"].values]
+    columns: dict[str, object] = {}
+    rms_names = [str(n) for n in stats.data_vars if str(n).startswith("rms")]
+
+    def units_of(name: str) -> list[str]:
+        da = stats[name]
+        coord = da.attrs.get("units_coordinate")
+        if coord is not None and coord in stats.coords:
+            return [str(u) for u in stats[coord].values]
+        return [str(da.attrs.get("units", ""))] * len(labels)
+
+    columns["peak"] = stats["peak"].values
+    columns["peak_unit"] = units_of("peak")
+    freq_unit = stats["dominant_frequency"].attrs.get("units", "Hz")
+    columns[f"dominant_frequency [{freq_unit}]"] = stats["dominant_frequency"].values
+    for name in rms_names:
+        columns[name] = stats[name].values
+    if rms_names:
+        columns["rms_unit"] = units_of(rms_names[0])
+    return pd.DataFrame(columns, index=pd.Index(labels, name="response"))
 
 
 def _in_band(psd: xr.DataArray, band: tuple[float, float] | None) -> xr.DataArray:

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from railvib import units
 from railvib.response import FRF
+from railvib.results.units import QUANTITY_UNITS, quantity_unit
 
 __all__ = ["PER_FREQUENCY", "VARIABLES", "ResultVariable", "compute_variables"]
 
@@ -33,7 +33,8 @@ class ResultVariable:
     extra_dim : {"response", "wheel"} or None
         The dimension after ``frequency`` (None: frequency only).
     units : str
-        Units of the values (of the bounce responses where pitch differs; see `note`).
+        Units of the values (of the bounce responses where pitch differs; see `note`
+        and :func:`railvib.results.units.quantity_unit`, which gives each response's).
     long_name : str
         Description for plots and files.
     note : str
@@ -90,36 +91,42 @@ def _variables(*items: ResultVariable) -> dict[str, ResultVariable]:
     return {v.name: v for v in items}
 
 
+def _pitch(quantity: str) -> str:
+    """The unit of `quantity` of a pitch (rotational) response."""
+    return QUANTITY_UNITS[quantity].format(d="rad")
+
+
 #: every per-frequency result variable, by name
 VARIABLES: dict[str, ResultVariable] = _variables(
     ResultVariable(
         "psd_acceleration",
         "response",
-        units.ACCELERATION_PSD,
+        quantity_unit("psd_acceleration"),
         "acceleration PSD",
-        "pitch responses are in (rad/s^2)^2/Hz",
+        f"pitch responses are in {_pitch('psd_acceleration')}",
         _psd_acceleration,
     ),
     ResultVariable(
         "psd_displacement",
         "response",
-        units.DISPLACEMENT_PSD,
+        quantity_unit("psd_displacement"),
         "displacement PSD",
-        "pitch responses are in rad^2/Hz",
+        f"pitch responses are in {_pitch('psd_displacement')}",
         _psd_displacement,
     ),
     ResultVariable(
         "frf_displacement",
         "response",
-        "m/m",
+        quantity_unit("frf_displacement"),
         "displacement per unit irregularity (complex)",
-        "pitch responses are in rad/m; exp(+i omega t); input = profile at the leading wheel",
+        f"pitch responses are in {_pitch('frf_displacement')}; exp(+i omega t); "
+        "input = profile at the leading wheel",
         lambda frf, s_r: frf.displacement,
     ),
     ResultVariable(
         "psd_force",
         "wheel",
-        units.FORCE_PSD,
+        quantity_unit("psd_force"),
         "dynamic wheel-rail contact force PSD",
         "",
         _psd_force,
@@ -127,7 +134,7 @@ VARIABLES: dict[str, ResultVariable] = _variables(
     ResultVariable(
         "frf_force",
         "wheel",
-        "N/m",
+        quantity_unit("frf_force"),
         "contact force per unit irregularity (complex)",
         "",
         lambda frf, s_r: frf.contact_force,
@@ -135,7 +142,7 @@ VARIABLES: dict[str, ResultVariable] = _variables(
     ResultVariable(
         "irregularity_psd",
         None,
-        units.DISPLACEMENT_PSD,
+        quantity_unit("irregularity_psd"),
         "irregularity PSD applied",
         "",
         lambda frf, s_r: s_r,

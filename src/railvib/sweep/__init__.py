@@ -15,6 +15,7 @@ Examples
 
 from railvib.sweep.batch import compute_chunk, frf_many_speeds
 from railvib.sweep.dataset import (
+    linear_model_line,
     load_sweep_dataset,
     save_sweep_csv,
     save_sweep_extras,
@@ -46,6 +47,7 @@ __all__ = [
     "describe_run",
     "fingerprint",
     "frf_many_speeds",
+    "linear_model_line",
     "load_sweep",
     "load_sweep_dataset",
     "run_sweep",

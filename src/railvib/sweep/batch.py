@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.case import Case, build_grid, build_spectrum, build_system, case_from_dict
 from railvib.case.load import merge_case_dicts
 from railvib.coupling import CoupledSystem, coupled_response
+from railvib.outputs import ContactCheck
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF, response_labels
 from railvib.results.stats import summary, summary_names
@@ -30,12 +31,22 @@ from railvib.units import kmh_to_ms
 from railvib.vehicle.assembly import WheelCondensation
 
 __all__ = [
+    "CONTACT_SUMMARY",
     "BatchFRF",
     "case_labels",
     "compute_chunk",
+    "contact_check",
     "frf_many_speeds",
     "summary_names",
 ]
+
+#: summary variables of the contact check each case of a sweep stores, with their dimension
+#: after the case (:class:`railvib.outputs.ContactCheck`)
+CONTACT_SUMMARY: dict[str, tuple[str, ...]] = {
+    "contact_force_rms": ("wheel",),
+    "loss_of_contact_probability": ("wheel",),
+    "linear_model_valid": (),
+}
 
 
 #: responses of several speeds of one system (one container for every solver)
@@ -141,15 +152,20 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     -------
     dict of numpy.ndarray
         Per-frequency variables ``(n_case, n_freq, n_resp or n_wheel)``
-        (``irregularity_psd``: ``(n_case, n_freq)``) and summary variables
-        ``(n_case, n_resp)``; cases in C order over the chunk block.
+        (``irregularity_psd``: ``(n_case, n_freq)``), summary variables
+        ``(n_case, n_resp)`` and the contact check (:data:`CONTACT_SUMMARY`:
+        ``(n_case, n_wheel)`` and ``(n_case,)``); cases in C order over the chunk block.
     """
     layout = SweepLayout(spec)
     base = spec.base_case_dict()
     f = build_grid(case_from_dict(base)).f
     cases, groups = _chunk_cases(spec, layout, chunk_id)
-    frf, s_r = _solve_groups(f, cases, groups)
+    frf, s_r, loads = _solve_groups(f, cases, groups)
     out: dict[str, NDArray[Any]] = dict(compute_variables(frf, s_r, spec.variables))
+    psd_force = np.asarray(compute_variables(frf, s_r, ["psd_force"])["psd_force"], dtype=float)
+    check = contact_check(f, psd_force, loads, spec.loss_of_contact_threshold)
+    for name in CONTACT_SUMMARY:
+        out[f"summary/{name}"] = check[name].values
     target = compute_variables(frf, s_r, [spec.summary_variable])[spec.summary_variable]
     da = xr.DataArray(
         target,
@@ -162,6 +178,43 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     for name in summary_names(bands):
         out[f"summary/{name}"] = stats[name].transpose("case", "response").values
     return out
+
+
+def contact_check(
+    f: NDArray[np.float64],
+    psd_force: NDArray[np.float64],
+    static_loads: NDArray[np.float64],
+    loss_of_contact_threshold: float,
+) -> dict[str, xr.DataArray]:
+    """The contact check of many cases (:class:`railvib.outputs.ContactCheck`, the run's code).
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        Frequencies, Hz, ``(n_freq,)``.
+    psd_force : numpy.ndarray
+        One-sided contact force PSDs, N^2/Hz, ``(n_case, n_freq, n_wheel)``.
+    static_loads : numpy.ndarray
+        Static load of each contact, N, ``(n_case, n_wheel)``.
+    loss_of_contact_threshold : float
+        Largest probability of loss of contact (dimensionless) within the linear model.
+
+    Returns
+    -------
+    dict of xarray.DataArray
+        ``contact_force_rms`` (N) and ``loss_of_contact_probability`` over ``(case,
+        wheel)``, ``linear_model_valid`` over ``case``.
+    """
+    ds = xr.Dataset(
+        {
+            "psd_force": (("case", "frequency", "wheel"), psd_force),
+            "static_contact_load": (("case", "wheel"), static_loads),
+        },
+        coords={"frequency": f},
+    )
+    check = ContactCheck(loss_of_contact_threshold=loss_of_contact_threshold)
+    out = check.compute(ds)
+    return {name: out[name].transpose("case", ...) for name in CONTACT_SUMMARY}
 
 
 def _chunk_cases(
@@ -186,8 +239,11 @@ def _chunk_cases(
 
 def _solve_groups(
     f: NDArray[np.float64], cases: list[dict[str, Any]], groups: list[list[int]]
-) -> tuple[FRF, NDArray[np.float64]]:
-    """Responses of every case, ``(n_case, n_freq, ...)``, and the irregularity PSD applied.
+) -> tuple[FRF, NDArray[np.float64], NDArray[np.float64]]:
+    """Responses of every case, ``(n_case, n_freq, ...)``, its irregularity PSD and wheel loads.
+
+    The irregularity PSD applied is in m^2/Hz, ``(n_case, n_freq)``; the static wheel
+    loads in N, ``(n_case, n_wheel)``.
 
     Each group shares one coupled system and is solved in one batched call over its
     speeds; groups share the rail receptance and the vehicle condensation where
@@ -196,6 +252,7 @@ def _solve_groups(
     n_case = len(cases)
     per_case: list[FRF | None] = [None] * n_case
     s_r = np.empty((n_case, f.size))
+    loads: list[NDArray[np.float64] | None] = [None] * n_case
     receptances: dict[str, NDArray[np.complex128]] = {}
     condensations: dict[str, WheelCondensation] = {}
     spectra: dict[str, Any] = {}
@@ -217,8 +274,10 @@ def _solve_groups(
             receptance=receptances[tkey],
             condensation=condensations[vkey],
         )
+        static = np.asarray(system.vehicle.static_wheel_loads(), dtype=float)
         for i in members:
             per_case[i] = batch.at(speeds.index(cases[i]["speed_kmh"]))
+            loads[i] = static
             ikey = _key(cases[i]["irregularity"])
             if ikey not in spectra:
                 spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
@@ -232,7 +291,7 @@ def _solve_groups(
         np.stack([h.contact_force for h in solved]),
         solved[0].dofs,
     )
-    return frf, s_r
+    return frf, s_r, np.stack([p for p in loads if p is not None])
 
 
 def _with_irregularity(case: Case, full: dict[str, Any]) -> Case:

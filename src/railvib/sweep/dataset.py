@@ -6,26 +6,31 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pandas as pd
 import xarray as xr
 from numpy.typing import NDArray
 
 from railvib.case import Case, build_grid, build_system, case_from_dict
 from railvib.errors import CaseError
 from railvib.io import atomic_path, railvib_version
-from railvib.results.dataset import PSD_CONVENTION, save_netcdf
+from railvib.outputs import ContactCheck, loss_of_contact_threshold
+from railvib.results.dataset import PSD_CONVENTION, load_netcdf, save_netcdf
 from railvib.results.stats import summary_attrs, summary_names
+from railvib.results.units import QUANTITY_UNITS, summary_quantity, with_unit_coordinates
 from railvib.results.variables import VARIABLES
-from railvib.sweep.batch import case_labels
+from railvib.sweep.batch import CONTACT_SUMMARY, case_labels
 from railvib.sweep.folder import CSV_NAME, MANIFEST, NETCDF_NAME, PLOTS_NAME, ZARR_NAME
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
 
 __all__ = [
     "field_unit",
+    "linear_model_line",
     "load_sweep_dataset",
     "save_sweep_csv",
     "save_sweep_extras",
     "save_sweep_netcdf",
+    "summary_table",
     "summary_variables",
     "sweep_dataset",
 ]
@@ -93,7 +98,11 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
     Returns
     -------
     xarray.Dataset
-        Dimensions ``frequency``, ``response`` / ``wheel``, then the sweep dimensions.
+        Dimensions ``frequency``, ``response`` / ``wheel``, then the sweep dimensions;
+        the contact check of every case (``contact_force_rms``,
+        ``loss_of_contact_probability``, ``linear_model_valid``) where the chunks hold
+        it; per-response units coordinates where pitch and bounce units differ
+        (:func:`railvib.results.units.with_unit_coordinates`).
     """
     layout = SweepLayout(spec)
     base = case_from_dict(spec.base_case_dict())
@@ -121,6 +130,18 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
         da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, "response"))
         attrs = summary_attrs(name, summarised, VARIABLES[summarised].units)
         data[name] = da.transpose("response", *sweep_dims).assign_attrs(attrs)
+    check = ContactCheck(loss_of_contact_threshold=spec.loss_of_contact_threshold)
+    contact_attrs = check.variable_attrs(float(f[0]), float(f[-1]))
+    for name, extra in CONTACT_SUMMARY.items():
+        if f"summary/{name}" not in arrays:  # chunks of an older railvib
+            continue
+        da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, *extra))
+        data[name] = da.transpose(*extra, *sweep_dims).assign_attrs(contact_attrs[name])
+    quantities = {name: name for name in spec.variables if name in QUANTITY_UNITS}
+    for name in summary_names(spec.rms_bands):
+        quantity = summary_quantity(name, summarised)
+        if quantity is not None:
+            quantities[name] = quantity
     attrs = {
         "title": spec.title,
         "psd_convention": PSD_CONVENTION,
@@ -132,7 +153,7 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
         "summary_variable": spec.summary_variable,
         "time_dependence": "exp(+i omega t)",
     }
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return with_unit_coordinates(xr.Dataset(data, coords=coords, attrs=attrs), quantities)
 
 
 def _coord_array(values: list[Any]) -> NDArray[Any]:
@@ -176,7 +197,7 @@ def load_sweep_dataset(path: str | Path) -> xr.Dataset:
             raise CaseError("sweep", str(path), f"a readable sweep.zarr store ({exc})") from None
     if path.suffix == ".nc" and path.is_file():
         try:
-            ds = xr.load_dataset(path, engine="h5netcdf")
+            ds = load_netcdf(path)  # booleans (linear_model_valid) come back boolean
         except (OSError, ValueError) as exc:
             reason = " ".join(str(exc).split())[:120]
             raise CaseError("sweep", str(path), f"a readable netCDF file ({reason})") from None
@@ -213,6 +234,106 @@ def save_sweep_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     return save_netcdf(ds, path)
 
 
+def linear_model_line(ds: xr.Dataset) -> str:
+    """How many cases of a sweep lie beyond the linear model, in one line.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep dataset (:func:`sweep_dataset`).
+
+    Returns
+    -------
+    str
+        E.g. ``"3 of 12 cases beyond the linear model (loss of contact > 1 %)"``; a
+        sweep assembled without the contact check says so.
+    """
+    if "linear_model_valid" not in ds:
+        return "linear model check: not in this sweep (assembled by an older railvib)"
+    valid = np.asarray(ds["linear_model_valid"].values, dtype=bool)
+    threshold = loss_of_contact_threshold(ds)
+    n_bad = int(valid.size - np.count_nonzero(valid))
+    return (
+        f"{n_bad} of {valid.size} cases beyond the linear model "
+        f"(loss of contact > {100.0 * threshold:.3g} %)"
+    )
+
+
+def summary_table(ds: xr.Dataset) -> pd.DataFrame:
+    """The summary variables of a sweep as one table: a row per response and case.
+
+    Per-response statistics (``peak``, ``dominant_frequency``, ``rms``, ...) are
+    columns, each followed, where its unit differs between responses, by the unit of
+    each row (``peak_unit``, ``rms_unit`` after the last RMS column); columns of one
+    unit are headed ``<name> [<unit>]``. The contact check of the case is joined to
+    each of its rows: ``contact_force_rms_max [N]`` and
+    ``loss_of_contact_probability_max [1]`` (worst wheel) and ``linear_model_valid``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The sweep dataset (:func:`sweep_dataset`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by ``response`` and the sweep dimensions.
+    """
+    names = sorted(
+        (n for n in summary_variables(ds) if "response" in ds[n].dims), key=_statistic_order
+    )
+    unit_coords = [str(c) for c in ds.coords if str(c).endswith("_unit")]
+    table = ds[names].drop_vars(unit_coords).to_dataframe()[names]
+    responses = table.index.get_level_values("response")
+    columns: dict[str, Any] = {}
+    by_coord: dict[str, list[str]] = {}
+    for name in names:
+        coord = ds[name].attrs.get("units_coordinate")
+        if coord is not None and coord in ds.coords:
+            by_coord.setdefault(str(coord), []).append(name)
+    for name in table.columns:
+        coord = ds[name].attrs.get("units_coordinate") if name in ds else None
+        if coord in by_coord:
+            columns[name] = table[name].values
+            if by_coord[coord][-1] == name:
+                unit_of = dict(zip(ds["response"].values, ds[coord].values, strict=True))
+                columns[f"{by_coord[coord][0]}_unit"] = [unit_of[r] for r in responses]
+        elif name in ds:
+            columns[f"{name} [{ds[name].attrs.get('units', '')}]"] = table[name].values
+        else:  # a coordinate along the sweep (zipped axes)
+            columns[name] = table[name].values
+    out = pd.DataFrame(columns, index=table.index)
+    dims = [d for d in out.index.names if d != "response"]
+    per_case = {}
+    for name, column in (
+        ("contact_force_rms", "contact_force_rms_max [N]"),
+        ("loss_of_contact_probability", "loss_of_contact_probability_max [1]"),
+    ):
+        if name in ds:
+            per_case[column] = ds[name].max("wheel")
+    if "linear_model_valid" in ds:
+        per_case["linear_model_valid"] = ds["linear_model_valid"]
+    if per_case and dims:
+        cases = xr.Dataset(per_case).drop_vars(unit_coords, errors="ignore").to_dataframe()
+        cases = cases[list(per_case)]
+        out = out.join(cases, on=dims)
+    return out
+
+
+def _statistic_order(name: str) -> tuple[int, float, float, str]:
+    """Peak, dominant frequency, RMS, then the band RMS values by band, then the rest."""
+    fixed = {"peak": 0, "dominant_frequency": 1, "rms": 2}
+    if name in fixed:
+        return fixed[name], 0.0, 0.0, name
+    if name.startswith("rms_") and name.endswith("_hz"):
+        try:
+            lo, hi = (float(x) for x in name.removeprefix("rms_").removesuffix("_hz").split("_"))
+        except ValueError:
+            return 4, 0.0, 0.0, name
+        return 3, lo, hi, name
+    return 4, 0.0, 0.0, name
+
+
 def save_sweep_csv(ds: xr.Dataset, path: str | Path) -> Path:
     """Write the summary variables as one CSV table (a row per response and case).
 
@@ -221,16 +342,15 @@ def save_sweep_csv(ds: xr.Dataset, path: str | Path) -> Path:
     ds : xarray.Dataset
         The sweep dataset (:func:`sweep_dataset`).
     path : str or pathlib.Path
-        The CSV file; columns are headed ``<variable> [<units>]``.
+        The CSV file: the table of :func:`summary_table` (columns of one unit headed
+        ``<variable> [<units>]``, the others followed by a unit column).
 
     Returns
     -------
     pathlib.Path
         `path`.
     """
-    names = summary_variables(ds)
-    table = ds[names].to_dataframe()
-    table.columns = [f"{c} [{ds[c].attrs.get('units', '')}]" for c in table.columns]
+    table = summary_table(ds)
     path = Path(path)
     with atomic_path(path) as tmp:
         table.to_csv(tmp, float_format="%.9g")

@@ -49,6 +49,7 @@ from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_
 from railvib.case.errors import case_error
 from railvib.errors import CaseError, RailvibDeprecationWarning, did_you_mean
 from railvib.io import read_toml
+from railvib.outputs import LOSS_OF_CONTACT_NOTE
 from railvib.presets import load_preset
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
 
@@ -401,6 +402,12 @@ class SweepSpec:
         """The base case's ``output.rms_bands``: ``(f_lo, f_hi)`` in Hz, shared by every case."""
         bands = self.base_case["output"]["rms_bands"]
         return tuple((float(lo), float(hi)) for lo, hi in bands)
+
+    @property
+    def loss_of_contact_threshold(self) -> float:
+        """The base case's ``output.loss_of_contact_threshold`` (probability), for every case."""
+        output = self.base_case["output"]
+        return float(output.get("loss_of_contact_threshold", LOSS_OF_CONTACT_NOTE))
 
     def base_case_dict(self) -> dict[str, Any]:
         """Return the base case as a plain, mutable deep copy (a case dict)."""

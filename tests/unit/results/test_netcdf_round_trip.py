@@ -210,13 +210,25 @@ def _read_csv(path):
     return rows[0], np.array(rows[1:], dtype=float)
 
 
+#: (bounce and rail, pitch) units of each PSD: a pitch DOF is an angle (CONVENTIONS.md)
+_CSV_UNITS = {
+    "psd_acceleration": ("(m/s^2)^2/Hz", "(rad/s^2)^2/Hz"),
+    "psd_displacement": ("m^2/Hz", "rad^2/Hz"),
+}
+
+
 @pytest.mark.parametrize("variable", ["psd_acceleration", "psd_displacement"])
 def test_csv_header_and_values(run_ds, tmp_path, variable):
     path = save_csv(run_ds, tmp_path / "out.csv", variable=variable)
     header, table = _read_csv(path)
-    units = run_ds[variable].attrs["units"]
+    # issue 10: every column carries the unit of its own response; the pitch columns
+    # were headed with the bounce unit (m-based) before
+    linear, angular = _CSV_UNITS[variable]
+    assert run_ds[variable].attrs["units"] == linear
     labels = [str(r) for r in run_ds["response"].values]
-    assert header == ["frequency [Hz]"] + [f"{label} [{units}]" for label in labels]
+    assert any(label.endswith(".pitch") for label in labels)
+    expected = [f"{lab} [{angular if lab.endswith('.pitch') else linear}]" for lab in labels]
+    assert header == ["frequency [Hz]", *expected]
     assert table.shape == (run_ds.sizes["frequency"], 1 + len(labels))
     # the CSV is written with %.6e: 7 significant digits, a relative rounding of at most
     # 5e-7; 1e-6 (6 significant digits) covers it with the decimal parse's own rounding
