@@ -6,6 +6,8 @@ message names the field, the value received and what is allowed, on one line.
 
 from __future__ import annotations
 
+import difflib
+from collections.abc import Iterable
 from typing import Any
 
 __all__ = [
@@ -15,6 +17,7 @@ __all__ = [
     "RailvibDeprecationWarning",
     "RailvibError",
     "SolverWarning",
+    "did_you_mean",
 ]
 
 
@@ -92,3 +95,30 @@ class RailvibDeprecationWarning(DeprecationWarning):
     The deprecated form keeps working (same result) until it is removed in a later
     release. Filter this class to silence or escalate railvib's deprecations alone.
     """
+
+
+def did_you_mean(word: Any, choices: Iterable[str]) -> str:
+    """``"; did you mean 'speed_kmh'?"`` when `word` is close to one of `choices`, else ``""``.
+
+    Parameters
+    ----------
+    word : Any
+        The unknown key or name a user wrote (non-text gives ``""``).
+    choices : iterable of str
+        The keys or names allowed there.
+
+    Returns
+    -------
+    str
+        The suggestion, to append to a :class:`CaseError`'s `allowed` text: the
+        closest choice by :func:`difflib.get_close_matches` (similarity >= 0.6), else
+        the one choice that `word` (3 characters or more) begins, as in ``dampin`` ->
+        ``damping_ns_per_m``.
+    """
+    if not isinstance(word, str):
+        return ""
+    names = [str(c) for c in choices]
+    close = difflib.get_close_matches(word, names, n=1, cutoff=0.6)
+    if not close and len(word) >= 3:
+        close = [c for c in names if c.startswith(word)]
+    return f"; did you mean {close[0]!r}?" if len(close) == 1 else ""

@@ -28,6 +28,7 @@ __all__ = [
     "FIGURE_DPI",
     "atomic_path",
     "new_figure",
+    "binary_kind",
     "railvib_version",
     "read_toml",
     "save_figure",
@@ -75,7 +76,46 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
             os.unlink(tmp)
 
 
-def read_toml(path: str | Path, field: str) -> dict[str, Any]:
+#: leading bytes of the binary files a user may pass by mistake, and what they are
+_MAGIC = (
+    (b"\x89HDF\r\n\x1a\n", "a netCDF-4/HDF5 file (e.g. results.nc)"),
+    (b"CDF\x01", "a netCDF file"),
+    (b"CDF\x02", "a netCDF file"),
+    (b"\x89PNG\r\n\x1a\n", "a PNG image"),
+    (b"%PDF", "a PDF file"),
+    (b"PK\x03\x04", "a zip archive"),
+    (b"\x1f\x8b", "a gzip archive"),
+)
+
+
+def binary_kind(data: bytes) -> str | None:
+    """What a file starting with `data` is, if it is not text (None for text).
+
+    Parameters
+    ----------
+    data : bytes
+        The first bytes of the file (a few hundred are enough).
+
+    Returns
+    -------
+    str or None
+        E.g. ``"a netCDF-4/HDF5 file (e.g. results.nc)"``, ``"a PNG image"`` or
+        ``"a binary file"``; None when `data` is UTF-8 text without NUL bytes.
+    """
+    for magic, kind in _MAGIC:
+        if data.startswith(magic):
+            return kind
+    if b"\x00" in data:
+        return "a binary file"
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        if exc.start < len(data) - 4:  # not merely a character cut at the end of `data`
+            return "a binary file"
+    return None
+
+
+def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:
     """Parse the TOML file `path`; an unreadable or invalid file is a one-line error.
 
     Parameters
@@ -84,6 +124,9 @@ def read_toml(path: str | Path, field: str) -> dict[str, Any]:
         The file.
     field : str
         What the file is (``"case"``, ``"sweep"``), named in the error.
+    hint : str
+        Where to get a good file, appended to the error when the file is binary or
+        empty (e.g. ``"`railvib template > case.toml` writes one"``).
 
     Returns
     -------
@@ -93,12 +136,24 @@ def read_toml(path: str | Path, field: str) -> dict[str, Any]:
     Raises
     ------
     CaseError
-        ``<field> = '<path>': a readable TOML file (...)`` or ``valid TOML (...)``.
+        ``<field> = '<path>': a readable TOML file (...)``, ``a TOML <field> file, not
+        a netCDF-4/HDF5 file ...`` (or another binary kind, or an empty file) or
+        ``valid TOML (...)``.
     """
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        raw = Path(path).read_bytes()
     except OSError as exc:
         raise CaseError(field, str(path), f"a readable TOML file ({exc.strerror})") from None
+    tail = f"; {hint}" if hint else ""
+    kind = binary_kind(raw[:4096])
+    if kind is not None:
+        raise CaseError(field, str(path), f"a TOML {field} file, not {kind}{tail}")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise CaseError(field, str(path), f"a UTF-8 TOML text file ({exc.reason})") from None
+    if not text.strip():
+        raise CaseError(field, str(path), f"a TOML {field} file, not an empty file{tail}")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

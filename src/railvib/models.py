@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 from railvib.outputs import OUTPUTS
 from railvib.pads import PADS
 from railvib.registry import Registry
@@ -50,7 +50,9 @@ def models_markdown(family: str | None = None) -> str:
         Markdown text.
     """
     if family is not None and family not in FAMILIES:
-        raise CaseError("family", family, f"one of {', '.join(FAMILIES)}")
+        raise CaseError(
+            "family", family, f"one of {', '.join(FAMILIES)}{did_you_mean(family, FAMILIES)}"
+        )
     names = [family] if family is not None else list(FAMILIES)
     parts = [] if family is not None else [_HEADER]
     parts += [FAMILIES[name].markdown() for name in names]

@@ -8,22 +8,47 @@ from pathlib import Path
 
 import numpy as np
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 from railvib.io import new_figure, save_figure, write_text
 from railvib.pads import (
     DEFAULT_EXPANSION_COEFFICIENT_PER_K,
+    MODEL_ALIASES,
+    PADS,
     WLF,
     LogLinearFit,
     ModelFit,
     fit_log_linear,
     fit_pad,
+    fittable_models,
     pad_toml,
     read_measurements_csv,
+    wj7_example_csv,
 )
 from railvib.pads.tts import wlf_choice
 from railvib.plot.pads import plot_master_curve, plot_stiffness_vs_frequency
 
-__all__ = ["PadFitJob", "PadFitReport", "fit_pad_to_folder"]
+__all__ = ["EXAMPLES", "PadFitJob", "PadFitReport", "fit_pad_to_folder", "write_example_data"]
+
+#: the shipped example data sets (synthetic WJ-7 pad, ``railvib/data/wj7/README.md``)
+EXAMPLES = {
+    "0p3hz": "wj7_synthetic_0p3hz.csv",
+    "multifrequency": "wj7_synthetic_multifrequency.csv",
+}
+
+#: the job's fields with their command-line options (model and output folder apart)
+_OPTIONS = {
+    "reference_temperature_c": "--reference-temperature",
+    "glass_transition_c": "--tg",
+    "c1": "--c1",
+    "c2_k": "--c2",
+    "wlf_reference_temperature_c": "--wlf-reference",
+    "vertical_shift": "--no-vertical-shift",
+    "expansion_coefficient_per_k": "--expansion-coefficient",
+    "n_terms": "--n-terms",
+    "temperatures_c": "--temperatures",
+    "band_hz": "--band",
+    "f0_hz": "--f0",
+}
 
 #: the WLF choices with their command-line options, for error messages
 _NAMES = {
@@ -79,9 +104,52 @@ class PadFitJob:
     f0_hz: float = 5.0
 
     def __post_init__(self) -> None:
+        fittable = fittable_models()
+        if self.model not in PADS or PADS.get(self.model).name not in fittable:
+            aliases = [a for a, n in MODEL_ALIASES.items() if n in fittable]
+            close = did_you_mean(self.model, [*fittable, *aliases])
+            raise CaseError(
+                "model",
+                self.model,
+                f"one of {', '.join(fittable)} (aliases {', '.join(aliases)}){close}",
+            )
         if len(self.band_hz) != 2:
             raise CaseError("pad_fit.band_hz (--band)", self.band_hz, "two frequencies (Hz)")
         self.wlf()  # a contradictory WLF choice is refused before any fitting
+
+    def command_line(self, data: str | Path, outdir: str | Path | None = None) -> str:
+        """The ``railvib pad fit`` command that runs this job on `data` into `outdir`.
+
+        Every option that differs from its default is written (``--model`` always), so
+        the command reproduces the fit.
+
+        Parameters
+        ----------
+        data : str or pathlib.Path
+            The measurements CSV, as the user gave it.
+        outdir : str or pathlib.Path, optional
+            The output folder (left out when None).
+
+        Returns
+        -------
+        str
+            E.g. ``railvib pad fit wj7.csv --model zener --tg -40 -o out``.
+        """
+        default = PadFitJob()
+        words = ["railvib pad fit", str(data), "--model", self.model]
+        for name, option in _OPTIONS.items():
+            value = getattr(self, name)
+            if value == getattr(default, name):
+                continue
+            if isinstance(value, bool):  # the one flag: --no-vertical-shift
+                words.append(option)
+            elif isinstance(value, tuple):
+                words += [option, ",".join(f"{v:g}" for v in value)]
+            else:
+                words += [option, f"{value:g}"]
+        if outdir is not None:
+            words += ["-o", str(outdir)]
+        return " ".join(words)
 
     def wlf(self) -> WLF | None:
         """The WLF law chosen (None: fit it), see :func:`railvib.pads.tts.wlf_choice`."""
@@ -149,7 +217,7 @@ def fit_pad_to_folder(data: str | Path, outdir: str | Path, job: PadFitJob) -> P
     band = (float(job.band_hz[0]), float(job.band_hz[1]))
     fits = tuple(fit_log_linear(result.model, t, band, f0_hz=job.f0_hz) for t in job.temperatures_c)
     text = "\n".join([result.summary(), *(_log_linear_line(ll, job.f0_hz) for ll in fits)])
-    header = f"railvib pad fit {data.name} --model {job.model}\n" + text
+    header = f"{job.command_line(data, outdir)}\n" + text
     files = [write_text(outdir / "pad.toml", pad_toml(result.model, header=header))]
     files += _plots(result, job, data.name, outdir)
     return PadFitReport(result, fits, text, tuple(files))
@@ -182,3 +250,27 @@ def _plots(result: ModelFit, job: PadFitJob, name: str, outdir: Path) -> Sequenc
         save_figure(axes[0], outdir / "master_curve.png", tight=False),
         save_figure(ax, outdir / "stiffness_vs_frequency.png"),
     ]
+
+
+def write_example_data(outdir: str | Path, multifrequency: bool = False) -> Path:
+    """Copy a shipped example measurements CSV into `outdir` (``railvib pad example``).
+
+    The data are synthetic (a WJ-7-like pad; ``railvib/data/wj7/README.md`` says how
+    they were made), in the columns :func:`railvib.pads.read_measurements_csv` reads.
+
+    Parameters
+    ----------
+    outdir : str or pathlib.Path
+        Folder to write into (created if missing).
+    multifrequency : bool
+        The DMA-style file (7 frequencies, 0.1-100 Hz, at each temperature, enough to
+        fit the WLF constants) instead of the 0.3 Hz temperature sweep.
+
+    Returns
+    -------
+    pathlib.Path
+        The CSV written.
+    """
+    name = EXAMPLES["multifrequency" if multifrequency else "0p3hz"]
+    text = wj7_example_csv(name).read_text(encoding="utf-8")
+    return write_text(Path(outdir) / name, text)

@@ -15,41 +15,14 @@ from 1) ``rail@wheel<j>``.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from railvib.labels import displacement_unit, rail_label, response_labels
+
 __all__ = ["FRF", "displacement_unit", "rail_label", "response_labels"]
-
-
-def rail_label(wheel: int) -> str:
-    """Label of the rail displacement under wheel `wheel` (1 = the leading wheel)."""
-    return f"rail@wheel{wheel}"
-
-
-def response_labels(vehicle_dofs: Sequence[str], n_wheel: int) -> tuple[str, ...]:
-    """Labels of a run's responses: the vehicle DOFs, then the rail under each wheel.
-
-    Parameters
-    ----------
-    vehicle_dofs : sequence of str
-        Names of the vehicle DOFs, e.g. ``"carbody.bounce"``.
-    n_wheel : int
-        Number of wheels.
-
-    Returns
-    -------
-    tuple of str
-        `vehicle_dofs` followed by ``rail@wheel1`` ... ``rail@wheel<n_wheel>``.
-    """
-    return (*vehicle_dofs, *(rail_label(j + 1) for j in range(n_wheel)))
-
-
-def displacement_unit(label: str) -> str:
-    """Unit of the displacement of response `label`: ``"rad"`` for a pitch DOF, else ``"m"``."""
-    return "rad" if label.endswith(".pitch") else "m"
 
 
 @dataclass(frozen=True, eq=False)

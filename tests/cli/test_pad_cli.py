@@ -32,3 +32,32 @@ def test_pad_fit_errors_are_one_line_exit_2(tmp_path, capsys, args, text):
     assert err.startswith("error: ")
     assert text in err
     assert err.count("\n") == 1
+
+
+def test_header_records_the_whole_command_and_a_parameter_at_a_bound_is_reported(tmp_path, capsys):
+    out = tmp_path / "out"
+    data = str(wj7_example_csv())
+    # the synthetic pad's loss is not viscous: a log-linear law with viscous damping fits
+    # its storage stiffness and is pushed to zero damping, the lower search bound
+    args = ["--model", "log_linear", "--tg", "-40", "--temperatures", "-20,0,20"]
+    assert main(["pad", "fit", data, *args, "--no-vertical-shift", "-o", str(out)]) == 0
+    header = (out / "pad.toml").read_text().splitlines()
+    assert header[0] == (
+        f"# railvib pad fit {data} --model log_linear --tg -40 --no-vertical-shift "
+        f"--temperatures -20,0,20 -o {out}"
+    )
+    note = next(line for line in capsys.readouterr().out.splitlines() if "note" in line)
+    assert note.startswith("note: damping_ns_per_m = ")
+    assert "N s/m ended at its lower search bound (0 N s/m)" in note
+    assert f"# {note}" in header
+
+
+def test_pad_example_writes_the_shipped_csv_and_says_what_next(tmp_path, capsys):
+    assert main(["pad", "example", "-o", str(tmp_path)]) == 0
+    path = tmp_path / "wj7_synthetic_0p3hz.csv"
+    assert path.read_text() == wj7_example_csv().read_text()
+    out = capsys.readouterr().out
+    assert f"railvib pad fit {path} --model zener --tg -40" in out
+    assert main(["pad", "example", "--multifrequency", "-o", str(tmp_path)]) == 0
+    multi = tmp_path / "wj7_synthetic_multifrequency.csv"
+    assert multi.read_text() == wj7_example_csv(multi.name).read_text()

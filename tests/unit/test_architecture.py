@@ -25,6 +25,7 @@ SRC = Path(__file__).resolve().parents[2] / "src" / "railvib"
 LAYERS = {
     "errors": 0,
     "docstrings": 0,
+    "labels": 0,
     "units": 0,
     "io": 1,
     "registry": 1,

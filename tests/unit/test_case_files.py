@@ -96,7 +96,7 @@ def test_rail_pair_mode_doubles_beam_pads_and_contact():
     k1 = single.track.pad.stiffness([10.0])
     k2 = pair.track.pad.stiffness([10.0])
     assert k2[0] == pytest.approx(2 * k1[0])
-    # physics.md §2: k_H at the 40.10 kN wheel load is 9.873e8 N/m
+    # docs/reference-values.md §1: k_H at the 40.10 kN wheel load is 9.873e8 N/m
     assert single.contact_stiffness == pytest.approx(9.873e8, rel=1e-3)
 
 

@@ -1,4 +1,4 @@
-"""Hertz contact and unit conversions against the physics notes' numbers (physics.md §2)."""
+"""Hertz contact and unit conversions against docs/reference-values.md §1."""
 
 import numpy as np
 import pytest
@@ -8,7 +8,7 @@ from railvib.errors import CaseError
 from railvib.units import celsius_to_kelvin, kelvin_to_celsius, kmh_to_ms
 
 
-def test_hertz_numbers_of_the_physics_notes():
+def test_hertz_numbers_of_the_reference_values():
     # conical tread, R = 0.42 m: G = 5.201e-8 m/N^(2/3) (4 digits given)
     assert hertz_constant_conical(0.42) == pytest.approx(5.201e-8, rel=2e-4)
     # k_H at 40.10 kN = 9.873e8 N/m, at 80.20 kN = 1.244e9 N/m

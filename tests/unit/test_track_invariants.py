@@ -1,4 +1,4 @@
-"""Structural invariants of the periodic-track solution (physics.md §3.2-3.3, §6.7)."""
+"""Structural invariants of the periodic-track solution (docs/reference-values.md §3.4)."""
 
 import numpy as np
 import pytest
@@ -121,7 +121,7 @@ def test_invalid_track_inputs_are_named():
 
 
 def test_pinned_pinned_frequency_is_finite_and_flagged(paper_track):
-    # f_pp = (pi/d)^2 sqrt(EI/m) / 2 pi = 1441.67 Hz (physics.md §3.5)
+    # f_pp = (pi/d)^2 sqrt(EI/m) / 2 pi = 1441.67 Hz (docs/reference-values.md §3.3)
     f_pp = (np.pi / 0.6) ** 2 * np.sqrt(6.62e6 / 60.64) / (2 * np.pi)
     with pytest.warns(SolverWarning, match="pinned-pinned"):
         a = paper_track.receptance([f_pp], [0.3], [0.3])

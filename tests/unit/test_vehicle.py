@@ -49,7 +49,8 @@ def test_rigid_track_frequencies_match_closed_forms(paper_vehicle):
     )
     expected = np.sort(np.concatenate([bounce, pitch, [f_bogie_pitch, f_bogie_pitch]]))
     np.testing.assert_allclose(clamped_wheel_frequencies(paper_vehicle), expected, rtol=1e-10)
-    # physics.md §6.3 (wheels on k_H rather than clamped): body bounce 0.766, pitch 0.909 Hz
+    # docs/reference-values.md §2 (wheels on k_H rather than clamped): body bounce 0.766,
+    # pitch 0.909 Hz
     np.testing.assert_allclose(expected[:2], [0.766, 0.909], atol=2e-3)
 
 
@@ -57,7 +58,7 @@ def test_static_wheel_loads_share_the_weight(paper_vehicle):
     loads = paper_vehicle.static_wheel_loads(9.81)
     per_wheelset = (P.carbody_mass / 4 + P.bogie_mass / 2 + P.wheelset_mass) * 9.81
     np.testing.assert_allclose(loads, per_wheelset, rtol=1e-12)
-    # physics.md §2: 40.10 kN per wheel (two wheels per wheelset)
+    # docs/reference-values.md §1: 40.10 kN per wheel (two wheels per wheelset)
     assert loads[0] / 2 == pytest.approx(40.10e3, rel=1e-3)
 
 

@@ -2,8 +2,8 @@
 
 Every expected direction and tolerance comes from the paper's text (Wang et al. 2017,
 Figs. 9-16), never from our own output; the comb spacing is computed from the case's
-speed and wheelbase. Absolute PSD values are not tested (physics.md 6.5: the paper's
-levels cannot be rebuilt).
+speed and wheelbase. Absolute PSD values are not tested (docs/paper-interpretation.md,
+"Constant pad stiffness against the wheelset peak": the paper's levels cannot be rebuilt).
 """
 
 import numpy as np

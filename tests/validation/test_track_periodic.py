@@ -2,7 +2,7 @@
 
 References: the closed-form receptance of an infinite Euler-Bernoulli beam on a
 continuous damped Winkler foundation (Thompson, Railway Noise and Vibration,
-2nd ed., Eqs. 3.6/3.17; physics.md §6.1), and a long finite rail on discrete pads,
+2nd ed., Eqs. 3.6/3.17; docs/reference-values.md §3.1), and a long finite rail on discrete pads,
 :class:`railvib.validation.FiniteTrack`.
 
 Why the finite track is an independent reference for the symplectic solver: it
@@ -48,7 +48,7 @@ def winkler_receptance(f, x, ei=EI, m=M, s=S_WINKLER, c=C_WINKLER):
 
 @pytest.mark.validation
 def test_winkler_formula_reproduces_published_numbers():
-    # physics.md §6.1 table (4 significant digits given): check our own reference first
+    # docs/reference-values.md §3.1 table (4 significant digits): check our own reference first
     f = np.array([10.0, 50.0, 100.0, 186.6, 300.0, 1000.0, 2000.0])
     expected = [7.997e-9, 8.114e-9, 8.304e-9, 7.093e-9, 4.065e-9, 6.491e-10, 2.282e-10]
     got = np.abs(winkler_receptance(f, 0.0))
@@ -59,7 +59,7 @@ def test_winkler_formula_reproduces_published_numbers():
 @pytest.mark.parametrize("x_obs", [0.0, 0.37, 1.3])
 def test_small_spacing_tends_to_winkler_beam(x_obs):
     # pads every 5 cm with k/d and c/d held at the paper's values; the error falls as d^4
-    # (physics.md §6.1 measured 2.4e-6 at d = 0.05 m), so 1 % is a loose bound.
+    # (docs/reference-values.md §3.1: 2.4e-6 at d = 0.05 m), so 1 % is a loose bound.
     d = 0.05
     track = PeriodicTrack(Rail(EI, M), SpringDamper(S_WINKLER * d, C_WINKLER * d), d)
     f = np.geomspace(1.0, 2000.0, 80)
@@ -70,8 +70,8 @@ def test_small_spacing_tends_to_winkler_beam(x_obs):
 
 
 @pytest.mark.validation
-def test_paper_track_matches_brute_force_numbers_in_physics_notes(paper_track):
-    # physics.md §6.1 "discrete seed track" (brute-force finite model, 4 digits)
+def test_paper_track_matches_brute_force_numbers_of_the_reference_values(paper_track):
+    # docs/reference-values.md §3.2 (brute-force finite model, 4 digits)
     f = np.array([1.0, 50.8, 186.0, 996.0, 2000.0])
     above = np.abs(paper_track.receptance(f, [0.0], [0.0])[:, 0, 0])
     np.testing.assert_allclose(

@@ -18,7 +18,7 @@ from railvib.pads import SpringDamper
 from railvib.track import PeriodicTrack, Rail
 
 EI, M, D = 6.62e6, 60.64, 0.6
-KGA = 0.4 * 7.9e10 * 7.745e-3  # CHN60, physics.md §6.2
+KGA = 0.4 * 7.9e10 * 7.745e-3  # CHN60, docs/reference-values.md §3.3
 RHO_I = 7850.0 * 3.217e-5
 PAD = SpringDamper(5e7, 5e4)
 
@@ -32,8 +32,9 @@ def pinned_pinned_timoshenko_hz():
     return np.sqrt(w2) / (2 * np.pi)
 
 
-def test_closed_form_matches_physics_notes():
-    # physics.md §6.2: a Timoshenko CHN60 rail gives f_pp of about 1071 Hz (vs 1441.7 Euler)
+def test_closed_form_matches_the_reference_value():
+    # docs/reference-values.md §3.3: a Timoshenko CHN60 rail gives f_pp of about 1071 Hz
+    # (vs 1441.7 Euler)
     assert pinned_pinned_timoshenko_hz() == pytest.approx(1071.0, rel=0.01)
 
 

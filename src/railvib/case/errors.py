@@ -6,11 +6,12 @@ fails, the user reads one line ``field = value: what is allowed (unit)``.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 
 __all__ = ["case_error"]
 
@@ -57,16 +58,17 @@ def case_error(exc: ValidationError, root: type[BaseModel] | None = None) -> Cas
     if kind == "missing":
         return CaseError(field, "<missing>", f"required{unit_txt}")
     if kind == "extra_forbidden":
-        allowed = ", ".join(sorted(getattr(_model_at(root, loc[:-1]), "model_fields", {})))
-        return CaseError(
-            field, value, "unknown key" + (f"; allowed here: {allowed}" if allowed else "")
-        )
+        keys = sorted(getattr(_model_at(root, loc[:-1]), "model_fields", {}))
+        allowed = f"; allowed here: {', '.join(keys)}" if keys else ""
+        return CaseError(field, value, f"unknown key{allowed}{did_you_mean(loc[-1], keys)}")
     if kind in _BOUNDS:
         return CaseError(
             field, value, f"must be {_BOUNDS[kind]} {next(iter(ctx.values()))}{unit_txt}"
         )
     if kind == "literal_error":
-        return CaseError(field, value, f"must be one of {ctx.get('expected')}")
+        expected = str(ctx.get("expected", ""))
+        names = re.findall(r"'([^']*)'", expected)
+        return CaseError(field, value, f"must be one of {expected}{did_you_mean(value, names)}")
     if kind in _NUMBER_KINDS:
         what = "an integer" if kind.startswith("int") else "a number"
         return CaseError(field, value, f"must be {what}{unit_txt}")

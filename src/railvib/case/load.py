@@ -51,7 +51,15 @@ def load_case(path: str | Path, *, force: bool = False) -> Case:
         With the dotted field name, the value and what is allowed.
     """
     path = Path(path)
-    return case_from_dict(read_toml(path, "case"), base_dir=path.parent, force=force)
+    hint = "`railvib template > case.toml` writes one"
+    data = read_toml(path, "case", hint)
+    if "axes" in data:
+        raise CaseError(
+            "case",
+            str(path),
+            "a case file; this is a sweep file ([[axes]]): run it with `railvib sweep`",
+        )
+    return case_from_dict(data, base_dir=path.parent, force=force)
 
 
 def case_from_dict(
@@ -95,6 +103,8 @@ def case_from_dict(
     preset = data.pop("preset", None)
     own_track = data.get("track")
     temperature_given = isinstance(own_track, dict) and "pad_temperature_c" in own_track
+    output = data.get("output")
+    bands_given = isinstance(output, dict) and "rms_bands" in output
     if preset is not None:
         data = merge_case_dicts(load_preset(preset), data)
     if base_dir is not None:
@@ -105,6 +115,7 @@ def case_from_dict(
         raise case_error(exc, Case) from None
     check_grid_size(case, force=force)  # before the grid is built
     pad, f = _check_models(case)
+    case = _fit_bands(case, f, bands_given)
     if warn:
         for warning in plausibility_warnings(case, pad, f, temperature_given=temperature_given):
             warnings.warn(warning, stacklevel=2)
@@ -163,14 +174,15 @@ def _check_models(case: Case) -> tuple[PadModel, NDArray[np.float64]]:
     """Build every family table of the case, and evaluate the pad on the case's grid.
 
     So an unknown model, a bad parameter, a pad that is not passive somewhere on
-    the grid, or a temperature the pad's WLF law cannot take, is reported as a
-    case error before anything runs. Returns the pad and the grid's frequencies (Hz).
+    the grid, or a temperature the pad's WLF law cannot take, is reported as a case
+    error before anything runs. Returns the pad and the grid's frequencies (Hz).
     """
     data = case.model_dump(mode="python")
     for location, family in FAMILY_TABLES.items():
         family.from_dict(_table_at(data, location), ".".join(location))
+    f = build_grid(case).f
     temperature = case.track.pad_temperature_c
-    pad, f = build_pad(case), build_grid(case).f
+    pad = build_pad(case)
     try:
         pad.check_passive(f, temperature, field="track.pad")
     except CaseError as exc:
@@ -178,3 +190,47 @@ def _check_models(case: Case) -> tuple[PadModel, NDArray[np.float64]]:
             raise
         raise CaseError("track.pad_temperature_c", temperature, exc.allowed) from None
     return pad, f
+
+
+def _fit_bands(case: Case, f: NDArray[np.float64], given: bool) -> Case:
+    """`case` with RMS bands its grid resolves: each holds at least two grid frequencies.
+
+    A band outside the grid or between two grid points has no trapezoidal integral
+    (one grid point would give an RMS of 0). A band the case file gives is refused
+    then, when the case is loaded, so a run writes all its outputs or none; bands the
+    case did not set (a preset's, or the default ones) that the grid does not reach
+    are left out of the summary: the user never asked for them. A band reaching past
+    the grid is integrated over the part on the grid, as before.
+
+    Parameters
+    ----------
+    case : Case
+        The validated case.
+    f : numpy.ndarray
+        Frequencies of its grid, Hz.
+    given : bool
+        Whether the case file (not a preset or the default) sets ``[output] rms_bands``.
+
+    Returns
+    -------
+    Case
+        `case`, or a copy without the inherited bands the grid cannot hold.
+    """
+    fr = case.frequency
+    keep = []
+    for i, (lo, hi) in enumerate(case.output.rms_bands):
+        inside = int(np.count_nonzero((f >= lo) & (f <= hi)))
+        if inside >= 2:
+            keep.append((lo, hi))
+        elif given:
+            raise CaseError(
+                f"output.rms_bands[{i}]",
+                [lo, hi],
+                f"a band holding at least two frequencies of the grid [{fr.f_min:g}, "
+                f"{fr.f_max:g}] Hz (this one holds {inside}); widen or move the band, or "
+                "change [frequency] (Hz)",
+            )
+    if len(keep) == len(case.output.rms_bands):
+        return case
+    output = case.output.model_copy(update={"rms_bands": keep})
+    return case.model_copy(update={"output": output})

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from typing import Any
 
-import tomli_w
 from pydantic import BaseModel
 
 from railvib.case.schema import FAMILY_TABLES, Case
 from railvib.presets import DEFAULT_PRESET, load_preset
+from railvib.registry import toml_line
 
 __all__ = ["render_template"]
 
@@ -22,7 +22,11 @@ def _comment(info: Any) -> str:
 
 
 def _section(model: type[BaseModel], values: dict[str, Any], path: tuple[str, ...]) -> list[str]:
-    """Lines of one section: its keys with comments, then its sub-tables."""
+    """Lines of one section: its keys with comments, then its sub-tables.
+
+    A key's comment is the line right above it; a sub-table's description is the
+    line right above its ``[header]``.
+    """
     lines: list[str] = []
     tables: list[list[str]] = []
     for name, info in model.model_fields.items():
@@ -31,15 +35,14 @@ def _section(model: type[BaseModel], values: dict[str, Any], path: tuple[str, ..
         header = ".".join(here)
         annotation = info.annotation
         if here in FAMILY_TABLES and isinstance(value, dict):
-            tables.append(FAMILY_TABLES[here].template_lines(value, header))
+            doc = (info.description or "").split(" (")[0]
+            tables.append(FAMILY_TABLES[here].template_lines(value, header, doc))
         elif isinstance(annotation, type) and issubclass(annotation, BaseModel):
             head = [f"# {annotation.__doc__.strip().splitlines()[0]}"] if annotation.__doc__ else []
             tables.append([*head, f"[{header}]", *_section(annotation, value or {}, here)])
         else:
             lines.append(_comment(info))
-            lines.append(
-                f"# {name} = ..." if value is None else tomli_w.dumps({name: value}).strip()
-            )
+            lines.append(f"# {name} = ..." if value is None else toml_line(name, value))
     for table in tables:
         lines += ["", *table]
     return lines

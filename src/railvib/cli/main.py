@@ -139,9 +139,10 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        Exit code: 0 on success, 2 for a RailvibError (bad input), 3 when ``--strict``
-        finds a result beyond the linear model (:class:`~railvib.errors.LinearModelInvalid`),
-        130 when aborted, else click's code.
+        Exit code: 0 on success, 2 for a RailvibError (bad input) or a usage error (both
+        one line ``error: ...`` on stderr), 3 when ``--strict`` finds a result beyond the
+        linear model (:class:`~railvib.errors.LinearModelInvalid`), 130 when aborted, else
+        click's code.
     """
     try:
         with warnings.catch_warnings():
@@ -156,10 +157,20 @@ def main(argv: list[str] | None = None) -> int:
     except click.exceptions.Abort:
         click.echo("aborted", err=True)
         return 130
+    except click.UsageError as exc:
+        click.echo(f"error: {_usage_line(exc)}", err=True)
+        return exc.exit_code
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
     return 0
+
+
+def _usage_line(exc: click.UsageError) -> str:
+    """A usage error on one line: click's message and where the help is."""
+    message = " ".join(exc.format_message().split())
+    command = exc.ctx.command_path if exc.ctx is not None else "railvib"
+    return f"{message} (see `{command} --help`)"
 
 
 if __name__ == "__main__":

@@ -31,7 +31,28 @@ def _floats(text: str, name: str) -> list[float]:
 
 @click.group()
 def pad() -> None:
-    """Railpad models: fit master curves and pad models to measurements."""
+    """Railpad models: fit master curves and pad models to measurements.
+
+    Start with "railvib pad example" (writes a synthetic measurements CSV here), then
+    "railvib pad fit wj7_synthetic_0p3hz.csv --model zener --tg -40".
+    """
+
+
+@pad.command()
+@click.option(
+    "--multifrequency",
+    is_flag=True,
+    help="the DMA-style file (7 frequencies per temperature; enough to fit WLF C1, C2)",
+)
+@output_option(Path("."), "folder to write the CSV into")
+def example(multifrequency: bool, outdir: Path) -> None:
+    """Write a shipped example measurements CSV (synthetic WJ-7 pad) to OUTPUT."""
+    from railvib.padfit import write_example_data
+
+    path = write_example_data(outdir, multifrequency=multifrequency)
+    click.echo(f"wrote {path} (synthetic data: see the header lines)")
+    tg = "" if multifrequency else " --tg -40"
+    click.echo(f"next: railvib pad fit {path} --model zener{tg}")
 
 
 @pad.command()

@@ -10,6 +10,7 @@ from pathlib import Path
 import click
 
 from railvib.cli.options import output_option
+from railvib.plot import DEFAULT_SWEEP_RESPONSES
 
 __all__ = ["plot", "sweep"]
 
@@ -83,6 +84,7 @@ def run_command(
     from railvib.errors import LinearModelInvalid
     from railvib.outputs import is_linear_model_valid
     from railvib.sweep import (
+        check_scheduler,
         default_output_folder,
         describe_run,
         linear_model_line,
@@ -92,6 +94,7 @@ def run_command(
     )
 
     spec = load_sweep(sweep_file)
+    check_scheduler(scheduler)  # before anything is said or written
     out = outdir if outdir is not None else default_output_folder(sweep_file)
     click.echo(describe_run(spec, out, scheduler=scheduler), err=True)
     try:
@@ -127,14 +130,18 @@ def run_command(
     multiple=True,
     default=("peak", "dominant_frequency"),
     show_default=True,
-    help="summary variable(s): peak, dominant_frequency, rms, rms_<lo>_<hi>_hz",
+    help="summary variable(s), repeated or comma-separated: peak, dominant_frequency, rms, "
+    "rms_<lo>_<hi>_hz (e.g. -v peak,rms_20_100_hz)",
 )
 @click.option(
     "-r",
     "--response",
     "responses",
     multiple=True,
-    help="response label(s) [default: car body, wheelset 1, rail at wheel 1]",
+    help="response label(s), repeated or comma-separated (-r wheelset2.bounce,rail@wheel1): "
+    "carbody.bounce, carbody.pitch, bogie1.bounce ... bogie2.pitch, wheelset1.bounce ... "
+    "wheelset4.bounce, rail@wheel1 ... rail@wheel4 "
+    f"[default: {', '.join(DEFAULT_SWEEP_RESPONSES)}]",
 )
 @click.option("--x", "x", default=None, help="sweep dimension on the horizontal axis")
 @click.option("--y", "y", default=None, help="sweep dimension for a heat map")
@@ -153,8 +160,13 @@ def plot(
 
     ds = load_sweep_dataset(result)
     folder = outdir if outdir is not None else default_plot_folder(result)
-    for path in save_sweep_plots(ds, folder, variables, responses, x=x, y=y):
+    for path in save_sweep_plots(ds, folder, _split(variables), _split(responses), x=x, y=y):
         click.echo(f"written {path}")
+
+
+def _split(values: tuple[str, ...]) -> list[str]:
+    """Repeated and comma-separated option values, in order: ``("a,b", "c")`` -> a, b, c."""
+    return [v.strip() for value in values for v in value.split(",") if v.strip()]
 
 
 sweep.add_command(plot)

@@ -7,7 +7,7 @@ time-temperature superposition with a :class:`WLF` law). Build them from case-fi
 tables with :func:`pad_from_dict`; fit them to measurements with :func:`fit_pad`.
 """
 
-from railvib.pads.base import PADS, FitStart, PadModel
+from railvib.pads.base import PADS, PASSIVITY_TOLERANCE, FitStart, PadModel
 from railvib.pads.fit import (
     FITTABLE_MODELS,
     LogLinearFit,
@@ -50,6 +50,7 @@ __all__ = [
     "MODEL_ALIASES",
     "PADS",
     "PAD_MODELS",
+    "PASSIVITY_TOLERANCE",
     "UNIVERSAL_C1",
     "UNIVERSAL_C2_K",
     "WLF",

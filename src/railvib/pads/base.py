@@ -35,7 +35,16 @@ _SHARED = {
     temperature ignore it.""",
 }
 
-__all__ = ["PADS", "FitStart", "PadModel"]
+__all__ = ["PADS", "PASSIVITY_TOLERANCE", "FitStart", "PadModel"]
+
+#: loss stiffness taken as round-off by :meth:`PadModel.check_passive`, relative to |K*|.
+#: ``K*`` is evaluated in double precision by a few operations (a complex power, a
+#: division, a product with the vertical TTS factor), each rounding by up to eps/2 of
+#: |K*|, so where the true ``K''`` is 0 or tiny the computed one can be a few eps |K*|
+#: below it (e.g. ``K*(9.2 Hz) = 1.352e+08 - 6.6e-09j`` N/m for a Zener pad at -85 degC:
+#: -5e-17 |K*|). 16 eps = 3.6e-15 is a loss factor 12 orders of magnitude below that of
+#: any real pad (>= 1e-3), so no physical loss of passivity hides below it.
+PASSIVITY_TOLERANCE = 16 * float(np.finfo(float).eps)
 
 
 class PadModel(ABC):
@@ -161,6 +170,9 @@ class PadModel(ABC):
     ) -> None:
         """Raise :class:`~railvib.errors.CaseError` unless ``K' > 0`` and ``K'' >= 0`` at all `f`.
 
+        A loss stiffness down to ``-PASSIVITY_TOLERANCE |K*|`` (16 eps |K*|) is taken as
+        round-off, not as a pad that gives energy back: see :data:`PASSIVITY_TOLERANCE`.
+
         Parameters
         ----------
         f : array_like
@@ -169,17 +181,39 @@ class PadModel(ABC):
             Temperature in degrees Celsius.
         field : str
             Field name used in the error message.
+
+        Raises
+        ------
+        CaseError
+            Naming the first frequency (and the temperature) where ``K*`` is not finite,
+            ``K' <= 0`` or ``K'' < -16 eps |K*|``, and why that is not allowed.
         """
         f = np.asarray(f, dtype=float)
-        k = self.stiffness(f, temperature)
-        bad = ~np.isfinite(k) | (np.real(k) <= 0) | (np.imag(k) < 0)
-        if np.any(bad):
-            i = int(np.flatnonzero(bad.ravel())[0])
-            raise CaseError(
-                field,
-                f"K*({f.ravel()[i]:g} Hz) = {k.ravel()[i]:.4g} N/m",
-                "a passive pad needs K' > 0 and K'' >= 0 at every frequency",
+        k = np.asarray(self.stiffness(f, temperature), dtype=complex)
+        finite = np.isfinite(k)
+        storage_bad = finite & (np.real(k) <= 0)
+        loss_bad = finite & (np.imag(k) < -PASSIVITY_TOLERANCE * np.abs(k))
+        bad = ~finite | storage_bad | loss_bad
+        if not np.any(bad):
+            return
+        i = int(np.flatnonzero(bad.ravel())[0])
+        fi, ki = float(f.ravel()[i]), complex(k.ravel()[i])
+        at = f"{fi:g} Hz" + ("" if temperature is None else f", {temperature:g} degC")
+        if not finite.ravel()[i]:
+            why = "a finite stiffness at every frequency of the grid"
+        elif storage_bad.ravel()[i]:
+            why = (
+                "K' > 0 at every frequency of the grid (a storage stiffness <= 0 is no "
+                "spring: the rail would not rest on the pad)"
             )
+        else:
+            why = (
+                f"K'' >= 0 at every frequency of the grid (a passive pad absorbs energy; a "
+                f"loss factor K''/K' = {ki.imag / ki.real:.3g} < 0 gives energy to the track; "
+                f"K'' down to -16 eps |K*| = {-PASSIVITY_TOLERANCE * abs(ki):.2g} N/m is "
+                "taken as round-off)"
+            )
+        raise CaseError(field, f"K*({at}) = {ki:.4g} N/m", why)
 
 
 @dataclass(frozen=True)
@@ -194,12 +228,17 @@ class FitStart:
         Bounds of the scaled parameters.
     build : callable
         ``build(x)`` -> the pad model at scaled parameters `x`.
+    names : tuple of str
+        The case-file key of the parameter each scaled parameter sets (``"tau_s"``,
+        ``"k_n_per_m[2]"``), so a fit ending at a search bound can name it; empty:
+        they are called by their position.
     """
 
     x0: list[float]
     lower: list[float]
     upper: list[float]
     build: Callable[[NDArray[np.float64]], PadModel]
+    names: tuple[str, ...] = ()
 
 
 #: every pad model a case file can name (``[track.pad] model = "..."``)

@@ -24,6 +24,7 @@ from railvib.pads.tts import (
     TemperatureShifted,
     vertical_shift_factor,
 )
+from railvib.registry import declared_parameters
 
 __all__ = [
     "FITTABLE_MODELS",
@@ -101,6 +102,9 @@ class ModelFit:
         Optimiser message.
     master : MasterCurve or None
         The master curve fitted to, when built by :func:`fit_pad`.
+    notes : tuple of str
+        One line per parameter that ended at a search bound (the data pushed it
+        there: the model may not suit them).
     """
 
     model: PadModel
@@ -109,6 +113,7 @@ class ModelFit:
     success: bool
     message: str
     master: MasterCurve | None = None
+    notes: tuple[str, ...] = ()
 
     @property
     def rms_storage(self) -> float:
@@ -133,6 +138,7 @@ class ModelFit:
             f"loss K'':   rms {100 * self.rms_loss:.2f} %, "
             f"max {100 * np.max(np.abs(self.residual_loss)):.2f} %",
             f"converged: {self.success} ({self.message})",
+            *(f"note: {note}" for note in self.notes),
         ]
         if self.master is not None:
             w = self.master.wlf
@@ -422,12 +428,75 @@ def fit_model(
             resid, x0, bounds=(start.lower, start.upper), x_scale="jac", xtol=1e-12, ftol=1e-12
         )
         if best is None or sol.cost < best[0].cost:
-            best = (sol, start.build)
+            best = (sol, start)
     assert best is not None, "at least one start point is always tried"
-    sol, build = best
-    fitted = build(sol.x)
+    sol, start = best
+    fitted = start.build(sol.x)
     rs, rl = _residuals(fitted, f, k, 1.0)
-    return ModelFit(fitted, rs, rl, bool(sol.success), str(sol.message))
+    notes = tuple(_bound_notes(fitted, start, _at_bounds(sol.x, start)))
+    return ModelFit(fitted, rs, rl, bool(sol.success), str(sol.message), notes=notes)
+
+
+def _at_bounds(x: _F, start: FitStart) -> NDArray[np.int_]:
+    """-1 / +1 where scaled parameter `x` ended at its lower / upper bound, else 0.
+
+    The scaled parameters are of order one (or logarithms), so a distance of 1e-4
+    (relative to the bound where it is larger than one) is "at the bound"; the
+    optimiser (``trf``) keeps its iterates strictly inside, so its own ``active_mask``
+    would miss a parameter that merely creeps towards a bound.
+    """
+    lower, upper = np.asarray(start.lower, dtype=float), np.asarray(start.upper, dtype=float)
+    with np.errstate(invalid="ignore"):
+        at_lower = np.isfinite(lower) & (x - lower <= 1e-4 * np.maximum(1.0, np.abs(lower)))
+        at_upper = np.isfinite(upper) & (upper - x <= 1e-4 * np.maximum(1.0, np.abs(upper)))
+    return np.where(at_lower, -1, np.where(at_upper, 1, 0))
+
+
+def _bound_notes(model: PadModel, start: FitStart, active: NDArray[np.int_]) -> list[str]:
+    """One line per parameter (key) of `model` whose scaled parameter ended at a bound."""
+    params = {p.key: p for p in declared_parameters(type(model))}
+    found: dict[tuple[str, int], list[tuple[str, float | None]]] = {}
+    for i in (int(j) for j in np.flatnonzero(active)):
+        name = start.names[i] if i < len(start.names) else f"parameter {i}"
+        key, _, index = name.partition("[")
+        found.setdefault((key, int(active[i])), []).append(
+            (index.rstrip("]"), _value_at_bound(start, i, int(active[i]), key, index))
+        )
+    notes = []
+    for (key, side), items in found.items():
+        p = params.get(key)
+        unit = f" {p.unit}" if p is not None and p.unit not in ("", "-") else ""
+        value = getattr(model, p.name) if p is not None else None
+        bounds = {b for _, b in items if b is not None}
+        at = f" ({bounds.pop():.4g}{unit})" if len(bounds) == 1 else ""
+        where = f"{'lower' if side < 0 else 'upper'} search bound{at}"
+        if value is None:
+            notes.append(f"{key} ended at its {where}")
+        elif items[0][0]:  # terms of a series, e.g. Prony branch stiffnesses
+            indices = ", ".join(j for j, _ in items)
+            shown = ", ".join(f"{float(value[int(j)]):.4g}" for j, _ in items)
+            notes.append(f"{key}[{indices}] = {shown}{unit} ended at the {where}")
+        else:
+            notes.append(
+                f"{key} = {float(value):.4g}{unit} ended at its {where}: the data push it "
+                "there, so this model may not suit them"
+            )
+    return notes
+
+
+def _value_at_bound(start: FitStart, i: int, side: int, key: str, index: str) -> float | None:
+    """Parameter `key` (term `index`) of the model whose scaled parameter i is at its bound."""
+    x = np.clip(np.array(start.x0, dtype=float), start.lower, start.upper)
+    x[i] = start.lower[i] if side < 0 else start.upper[i]
+    try:
+        model = start.build(x)
+    except (CaseError, ValueError, ZeroDivisionError):  # a bound no model can take
+        return None
+    p = {q.key: q for q in declared_parameters(type(model))}.get(key)
+    if p is None:
+        return None
+    value = getattr(model, p.name)
+    return float(value[int(index.rstrip("]"))] if index else value)
 
 
 def fit_pad(
@@ -482,7 +551,13 @@ def fit_pad(
         fit.model, master.wlf, reference_temperature_c, vertical_shift, expansion_coefficient_per_k
     )
     return ModelFit(
-        shifted, fit.residual_storage, fit.residual_loss, fit.success, fit.message, master
+        shifted,
+        fit.residual_storage,
+        fit.residual_loss,
+        fit.success,
+        fit.message,
+        master,
+        fit.notes,
     )
 
 

@@ -19,7 +19,8 @@ import numpy as np
 import tomli_w
 from numpy.typing import NDArray
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
+from railvib.io import binary_kind
 from railvib.pads.base import PADS, PadModel
 from railvib.pads.tts import TemperatureShifted, tts_to_dict
 
@@ -177,6 +178,15 @@ _COLUMNS = {
 }
 
 
+#: the columns a measurements CSV needs, as said in errors
+EXPECTED_COLUMNS = (
+    "temperature_c, frequency_hz, storage_n_per_m or storage_kn_per_mm, and loss_n_per_m, "
+    "loss_kn_per_mm or loss_factor"
+)
+#: where a user finds a good file, as said in errors
+_EXAMPLE_HINT = "`railvib pad example` writes one"
+
+
 def read_measurements_csv(path: str | Path) -> Measurements:
     """Read measurements from a CSV file with a header row; ``#`` lines are comments.
 
@@ -192,19 +202,58 @@ def read_measurements_csv(path: str | Path) -> Measurements:
     Returns
     -------
     Measurements
+
+    Raises
+    ------
+    CaseError
+        ``data = '<path>': ...`` for a file that is unreadable, binary, not a CSV of
+        these columns (e.g. a case file) or has no data row; ``data.<column>`` for an
+        unknown, repeated or non-numeric column.
     """
     path = Path(path)
     try:
-        with path.open(newline="") as fh:
-            rows = [r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")]
+        raw = path.read_bytes()
     except OSError as exc:
         raise CaseError("data", str(path), f"a readable CSV file ({exc.strerror})") from None
-    if len(rows) < 2:
-        raise CaseError("data", str(path), "a header row and at least one data row")
+    kind = binary_kind(raw[:4096])
+    if kind is not None:
+        raise CaseError(
+            "data", str(path), f"a measurements CSV (text), not {kind}; {_EXAMPLE_HINT}"
+        )
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise CaseError("data", str(path), f"a UTF-8 CSV text file ({exc.reason})") from None
+    lines = text.splitlines()
+    rows = [r for r in csv.reader(lines) if r and not r[0].lstrip().startswith("#")]
+    if not rows:
+        raise CaseError(
+            "data", str(path), f"a measurements CSV with columns {EXPECTED_COLUMNS}; it is empty"
+        )
     header = [h.strip().lower() for h in rows[0]]
     unknown = [h for h in header if h not in _COLUMNS]
+    if len(unknown) == len(header):  # no known column at all: not a measurements CSV
+        first = next(line for line in lines if line.strip() and not line.lstrip().startswith("#"))
+        first = first.strip()
+        what = (
+            "not a TOML file (a case file?)"
+            if first.startswith("[") or "=" in first.split(",")[0]
+            else f"whose header row names its columns (this one is {first[:40]!r})"
+        )
+        raise CaseError(
+            "data",
+            str(path),
+            f"a measurements CSV, {what}; the columns are {EXPECTED_COLUMNS}; {_EXAMPLE_HINT}",
+        )
     if unknown:
-        raise CaseError(f"data.{unknown[0]}", str(path), f"columns from {', '.join(_COLUMNS)}")
+        close = did_you_mean(unknown[0], _COLUMNS)
+        raise CaseError(
+            f"data.{unknown[0]}",
+            str(path),
+            f"unknown column; columns from {', '.join(_COLUMNS)}{close}",
+        )
+    if len(rows) < 2:
+        raise CaseError("data", str(path), "a header row and at least one data row")
     cols: dict[str, NDArray[np.float64]] = {}
     for j, name in enumerate(header):
         target, factor = _COLUMNS[name]
@@ -219,7 +268,7 @@ def read_measurements_csv(path: str | Path) -> Measurements:
     for need in ("temperature_c", "frequency_hz", "storage_n_per_m", "loss_n_per_m"):
         if need not in cols:
             raise CaseError(
-                f"data.{need}", str(path), "required column (see read_measurements_csv)"
+                f"data.{need}", str(path), f"required column; the columns are {EXPECTED_COLUMNS}"
             )
     return Measurements(**cols)
 

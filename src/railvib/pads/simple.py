@@ -25,10 +25,10 @@ def _scales(f: NDArray[np.float64], k: NDArray[np.complex128]) -> tuple[float, f
 
 
 def _stiffness_and_loss_start(
-    eta: float, build: Callable[[NDArray[np.float64]], PadModel]
+    eta: float, build: Callable[[NDArray[np.float64]], PadModel], names: tuple[str, str]
 ) -> list[FitStart]:
     """One start ``[1, eta]`` (stiffness scaled by the data's median, loss), both >= 0."""
-    return [FitStart([1.0, eta], [1e-9, 0.0], [np.inf, np.inf], build)]
+    return [FitStart([1.0, eta], [1e-9, 0.0], [np.inf, np.inf], build, names)]
 
 
 def _power_law_start(
@@ -71,7 +71,9 @@ class SpringDamper(PadModel):
         """Start at the median stiffness and loss factor of the data."""
         ks, wm, eta = _scales(f, k)
         return _stiffness_and_loss_start(
-            eta, lambda x: SpringDamper(float(x[0] * ks), float(x[1] * ks / wm))
+            eta,
+            lambda x: SpringDamper(float(x[0] * ks), float(x[1] * ks / wm)),
+            ("stiffness_n_per_m", "damping_ns_per_m"),
         )
 
 
@@ -110,7 +112,11 @@ class Hysteretic(PadModel):
     ) -> list[FitStart]:
         """Start at the median stiffness and loss factor of the data."""
         ks, _, eta = _scales(f, k)
-        return _stiffness_and_loss_start(eta, lambda x: Hysteretic(float(x[0] * ks), float(x[1])))
+        return _stiffness_and_loss_start(
+            eta,
+            lambda x: Hysteretic(float(x[0] * ks), float(x[1])),
+            ("stiffness_n_per_m", "loss_factor"),
+        )
 
 
 @PADS.register("log_linear")
@@ -171,6 +177,7 @@ class LogLinear(PadModel):
                 lambda x: LogLinear(
                     float(x[0] * ks), f0_hz, float(x[1]), float(x[2] * ks / wm), False
                 ),
+                ("k0_n_per_m", "exponent", "damping_ns_per_m"),
             )
         ]
 
@@ -217,5 +224,6 @@ class ConstantPhase(PadModel):
                 [1e-9, 0.0],
                 [np.inf, 0.999],
                 lambda x: ConstantPhase(float(x[0] * ks), f0_hz, float(x[1])),
+                ("k0_n_per_m", "exponent"),
             )
         ]

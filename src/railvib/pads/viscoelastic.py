@@ -143,7 +143,8 @@ def _zener_starts(f: NDArray[np.float64], k: NDArray[np.complex128], ks: float) 
         return FractionalZener(k0, k0 + float(ks * np.exp(x[1])), float(10.0 ** x[2]), float(x[3]))
 
     x0 = [np.log(k0 / ks), np.log(max(kinf - k0, 1e-3 * k0) / ks), -np.log10(2 * np.pi * f_peak)]
-    return [FitStart([*x0, a], lo, hi, build) for a in (0.2, 0.5, 0.9)]
+    names = ("k0_n_per_m", "k_inf_n_per_m", "tau_s", "alpha")
+    return [FitStart([*x0, a], lo, hi, build, names) for a in (0.2, 0.5, 0.9)]
 
 
 def _prony_starts(
@@ -162,5 +163,6 @@ def _prony_starts(
             [1e-9] + [0.0] * n,
             [np.inf] * (n + 1),
             lambda x: GeneralizedMaxwell(float(x[0] * ks), tuple(x[1:] * ks), tuple(tau)),
+            ("k_inf_n_per_m", *(f"k_n_per_m[{i}]" for i in range(n))),
         )
     ]

@@ -25,7 +25,7 @@ from matplotlib.ticker import LogFormatterSciNotation
 from numpy.typing import ArrayLike
 
 from railvib.io import new_figure, save_figure
-from railvib.response import rail_label
+from railvib.labels import rail_label
 from railvib.results.units import QUANTITY_UNITS, quantity_unit
 
 __all__ = [

@@ -15,10 +15,10 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.colors import LogNorm
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 from railvib.io import new_figure, save_figure
 from railvib.outputs import loss_of_contact_threshold
-from railvib.response import rail_label
+from railvib.plot import DEFAULT_SWEEP_RESPONSES
 
 __all__ = [
     "DEFAULT_RESPONSES",
@@ -33,7 +33,7 @@ __all__ = [
 INVALID_GID = "linear_model_invalid"
 
 #: responses drawn by :func:`save_sweep_plots` when present
-DEFAULT_RESPONSES = ("carbody.bounce", "wheelset1.bounce", rail_label(1))
+DEFAULT_RESPONSES = DEFAULT_SWEEP_RESPONSES
 
 
 def sweep_dims(ds: xr.Dataset) -> list[str]:
@@ -63,6 +63,42 @@ def _axis_values(ds: xr.Dataset, dim: str) -> tuple[np.ndarray, str]:
     c = ds.coords[names[0]]
     unit = c.attrs.get("units", "")
     return c.values, f"{names[0]} [{unit}]" if unit else str(names[0])
+
+
+def _resolve(
+    ds: xr.Dataset,
+    variable: str,
+    response: str | Sequence[str],
+    x: str | None,
+    y: str | None,
+    kind: str,
+) -> tuple[list[str], list[str], str, str | None]:
+    """Check a plot request against `ds`: the responses, sweep dims and the x and y chosen."""
+    if variable not in ds.data_vars or "frequency" in ds[variable].dims:
+        allowed = [str(n) for n, v in ds.data_vars.items() if "frequency" not in v.dims]
+        close = did_you_mean(variable, allowed)
+        raise CaseError("variable", variable, f"one of {', '.join(allowed)}{close}")
+    responses = [response] if isinstance(response, str) else list(response)
+    labels = [str(r) for r in ds["response"].values]
+    for r in responses:
+        if r not in labels:
+            raise CaseError("response", r, f"one of {', '.join(labels)}{did_you_mean(r, labels)}")
+    dims = sweep_dims(ds) or [str(d) for d in ds[variable].dims if d != "response"]
+    varying = [d for d in dims if ds.sizes[d] > 1] or dims
+    for name, dim in (("x", x), ("y", y)):
+        if dim is not None and dim not in dims:
+            raise CaseError(name, dim, f"one of {', '.join(dims)}{did_you_mean(dim, dims)}")
+    x = x or next((d for d in varying if d != y), varying[0])
+    if x == y:
+        others = [d for d in dims if d != x]
+        choice = f"one of {', '.join(others)}" if others else "omitted (one sweep dimension)"
+        raise CaseError("y", y, f"a sweep dimension other than x = {x!r}: {choice}")
+    if y is None and kind != "lines":
+        rest = [d for d in varying if d != x]
+        y = rest[0] if rest and kind in ("auto", "heatmap") else None
+    if kind == "heatmap" and y is None:
+        raise CaseError("y", None, "a second sweep dimension with more than one value")
+    return responses, dims, x, y
 
 
 def plot_sweep(
@@ -106,25 +142,7 @@ def plot_sweep(
         with red ``x`` markers (``gid`` :data:`INVALID_GID`, one legend entry): a
         scatter over lines, a marker line over a heat map.
     """
-    if variable not in ds.data_vars or "frequency" in ds[variable].dims:
-        allowed = [str(n) for n, v in ds.data_vars.items() if "frequency" not in v.dims]
-        raise CaseError("variable", variable, f"one of {', '.join(allowed)}")
-    responses = [response] if isinstance(response, str) else list(response)
-    labels = [str(r) for r in ds["response"].values]
-    for r in responses:
-        if r not in labels:
-            raise CaseError("response", r, f"one of {', '.join(labels)}")
-    dims = sweep_dims(ds) or [str(d) for d in ds[variable].dims if d != "response"]
-    varying = [d for d in dims if ds.sizes[d] > 1] or dims
-    for name, dim in (("x", x), ("y", y)):
-        if dim is not None and dim not in dims:
-            raise CaseError(name, dim, f"one of {', '.join(dims)}")
-    x = x or varying[0]
-    if y is None and kind != "lines":
-        rest = [d for d in varying if d != x]
-        y = rest[0] if rest and kind in ("auto", "heatmap") else None
-    if kind == "heatmap" and y is None:
-        raise CaseError("y", None, "a second sweep dimension with more than one value")
+    responses, dims, x, y = _resolve(ds, variable, response, x, y, kind)
     keep = {x} | ({y} if y else set())
     pick = {d: int((sel or {}).get(d, 0)) for d in dims if d not in keep}
     da = ds[variable].isel(pick)
@@ -295,9 +313,11 @@ def save_sweep_plots(
         An unknown variable, response or sweep dimension.
     """
     outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     labels = [str(r) for r in ds["response"].values]
     responses = list(responses) if responses else [r for r in DEFAULT_RESPONSES if r in labels]
+    for variable in variables:  # every request is checked before any file is written
+        _resolve(ds, variable, responses, x, y, "auto")
+    outdir.mkdir(parents=True, exist_ok=True)
     written = []
     for variable in variables:
         if variable in ds.data_vars and "response" not in ds[variable].dims:

@@ -11,7 +11,7 @@ import tomllib
 from importlib import resources
 from typing import Any
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 from railvib.registry import merge_tables
 
 __all__ = ["DEFAULT_PRESET", "list_presets", "load_preset", "preset_text"]
@@ -34,7 +34,7 @@ def preset_text(name: str) -> str:
     """The TOML text of preset `name`, comments included."""
     names = list_presets()
     if name not in names:
-        raise CaseError("preset", name, f"one of {names}")
+        raise CaseError("preset", name, f"one of {names}{did_you_mean(name, names)}")
     return _case_dir().joinpath(f"{name}.toml").read_text(encoding="utf-8")
 
 

@@ -19,6 +19,7 @@ declarations, and nowhere else, railvib derives:
 ``docs/extending.md`` shows a new pad model and a new spectrum added in one file each.
 """
 
+from railvib.registry.docs import toml_line
 from railvib.registry.family import TAG_KEYS, ExtraTable, Member, Registry
 from railvib.registry.parameters import (
     REQUIRED,
@@ -47,4 +48,5 @@ __all__ = [
     "parameter",
     "resolve_paths",
     "take_table",
+    "toml_line",
 ]

@@ -12,11 +12,42 @@ from railvib.registry.parameters import Parameter, declared_parameters
 if TYPE_CHECKING:
     from railvib.registry.family import Registry
 
-__all__ = ["markdown", "template_lines"]
+__all__ = ["markdown", "template_lines", "toml_line"]
 
 
-def template_lines(registry: Registry[Any], d: Mapping[str, Any], header: str) -> list[str]:
+def toml_line(key: str, value: Any) -> str:
+    """``key = value`` on one line, arrays inline (``rms_bands = [[0.5, 20.0], [20.0, 100.0]]``).
+
+    Parameters
+    ----------
+    key : str
+        The TOML key.
+    value : Any
+        A TOML value (numbers, text, booleans, arrays of them; no tables).
+
+    Returns
+    -------
+    str
+        One TOML line.
+    """
+    return f"{key} = {_inline(value)}"
+
+
+def _inline(value: Any) -> str:
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_inline(v) for v in value) + "]"
+    return tomli_w.dumps({"x": value}).strip().removeprefix("x = ")
+
+
+def template_lines(
+    registry: Registry[Any], d: Mapping[str, Any], header: str, doc: str = ""
+) -> list[str]:
     """Lines of a commented TOML table for `d` under ``[header]`` (nested tables follow).
+
+    Every comment stands right above what it documents: the table's description above
+    ``[header]``, each key's description and unit above the key. Optional keys that
+    `d` leaves out are shown commented out with their default, so every key of the
+    chosen member is documented.
 
     Parameters
     ----------
@@ -26,6 +57,9 @@ def template_lines(registry: Registry[Any], d: Mapping[str, Any], header: str) -
         The table (its keys are written with their declared documentation and unit).
     header : str
         Dotted name of the table, e.g. ``"track.pad"``.
+    doc : str
+        What the table is for (the declaring field's description), put first above
+        the header; empty: the family's name.
 
     Returns
     -------
@@ -34,31 +68,39 @@ def template_lines(registry: Registry[Any], d: Mapping[str, Any], header: str) -
     """
     member = registry.get(d[registry.tag])
     others = [n for n in registry.names() if n != member.name]
+    absent = [
+        f"# (an optional [{header}.{key}] table: {', '.join(p.key for p in params)})"
+        for key, (params, _) in registry.extra_tables.items()
+        if not isinstance(d.get(key), Mapping)
+    ]
     lines = [
+        f"# {doc or registry.family}: {member.doc}",
+        *absent,
         f"[{header}]",
-        f"# {registry.family}: {member.doc}",
-        f"# (other {registry.tag}s: {', '.join(others)}; see `railvib models`)",
-        tomli_w.dumps({registry.tag: member.name}).strip(),
+        f"# the {registry.family}; others: {', '.join(others)} (`railvib models`)",
+        toml_line(registry.tag, member.name),
     ]
     nested: list[str] = []
     for p in member.parameters:
-        if p.key not in d:
-            continue
         if p.kind == "member":
             assert p.family is not None, "a member parameter names its family"
-            nested += ["", *template_lines(p.family, d[p.key], f"{header}.{p.key}")]
+            if p.key in d:
+                unit = f" [{p.unit}]" if p.unit not in ("", "-") else ""
+                sub = f"{header}.{p.key}"
+                nested += ["", *template_lines(p.family, d[p.key], sub, f"{p.doc}{unit}")]
             continue
         lines.append(f"# {_comment(p)}")
-        lines.append(tomli_w.dumps({p.key: d[p.key]}).strip())
+        if p.key in d:
+            lines.append(toml_line(p.key, d[p.key]))
+        else:
+            shown = "..." if p.default is None else _inline(p.default)
+            lines.append(f"# {p.key} = {shown}")
     for key, (params, _) in registry.extra_tables.items():
         if isinstance(d.get(key), Mapping):
-            nested += ["", f"[{header}.{key}]"]
+            nested += ["", f"# optional table of any {registry.family}", f"[{header}.{key}]"]
             for p in params:
                 if p.key in d[key]:
-                    nested += [
-                        f"# {_comment(p)}",
-                        tomli_w.dumps({p.key: d[key][p.key]}).strip(),
-                    ]
+                    nested += [f"# {_comment(p)}", toml_line(p.key, d[key][p.key])]
     return lines + nested
 
 

@@ -6,7 +6,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Generic, Literal, TypeVar
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 from railvib.registry import docs
 from railvib.registry.parameters import Parameter, declared_parameters, take_table
 
@@ -185,7 +185,8 @@ class Registry(Generic[T]):
         key = self._aliases.get(name, name) if isinstance(name, str) else name
         if key not in self._members:
             where = f"{field}.{self.tag}" if field else self.tag
-            raise CaseError(where, name, f"one of {', '.join([*self._members, *self._aliases])}")
+            names = [*self._members, *self._aliases]
+            raise CaseError(where, name, f"one of {', '.join(names)}{did_you_mean(name, names)}")
         return self._members[key]
 
     def member_of(self, obj: object) -> Member[T]:
@@ -230,11 +231,13 @@ class Registry(Generic[T]):
         allowed = [p.key for p in member.parameters]
         for key, value in params.items():
             if key not in allowed:
+                keys = [*allowed, *self.extra_tables]
                 raise CaseError(
                     f"{field}.{key}",
                     value,
                     "unknown key; allowed here: "
-                    + (", ".join([*allowed, *self.extra_tables]) or "no other keys"),
+                    + (", ".join(keys) or "no other keys")
+                    + did_you_mean(key, keys),
                 )
         kwargs: dict[str, Any] = {}
         for p in member.parameters:
@@ -307,7 +310,7 @@ class Registry(Generic[T]):
 
         # -- documentation ------------------------------------------------------------------
 
-    def template_lines(self, d: Mapping[str, Any], header: str) -> list[str]:
+    def template_lines(self, d: Mapping[str, Any], header: str, doc: str = "") -> list[str]:
         """Lines of a commented TOML table for `d` under ``[header]`` (nested tables follow).
 
         Parameters
@@ -316,13 +319,15 @@ class Registry(Generic[T]):
             The table.
         header : str
             Dotted name of the table, e.g. ``"track.pad"``.
+        doc : str
+            What the table is for, first in the comment above the header.
 
         Returns
         -------
         list of str
-            TOML lines with ``#`` comments.
+            TOML lines with ``#`` comments, each right above what it documents.
         """
-        return docs.template_lines(self, d, header)
+        return docs.template_lines(self, d, header, doc)
 
     def markdown(self) -> str:
         """A Markdown section per member: its description and a table of its keys."""

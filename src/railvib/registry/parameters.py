@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeVar
 
 import numpy as np
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, did_you_mean
 
 if TYPE_CHECKING:
     from railvib.registry.family import Registry
@@ -411,7 +411,9 @@ def take_table(
     for key, value in d.items():
         if key not in keys:
             raise CaseError(
-                f"{field}.{key}", value, f"unknown key; allowed here: {', '.join(keys)}"
+                f"{field}.{key}",
+                value,
+                f"unknown key; allowed here: {', '.join(keys)}{did_you_mean(key, keys)}",
             )
     out: dict[str, Any] = {}
     for p in params:

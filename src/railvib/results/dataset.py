@@ -11,7 +11,8 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from railvib.io import atomic_path
-from railvib.response import FRF, displacement_unit
+from railvib.labels import displacement_unit
+from railvib.response import FRF
 from railvib.results.units import QUANTITY_UNITS, quantity_unit, with_unit_coordinates
 from railvib.results.variables import VARIABLES, compute_variables
 

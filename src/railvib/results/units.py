@@ -23,7 +23,7 @@ from collections.abc import Iterable, Mapping
 
 import xarray as xr
 
-from railvib.response import displacement_unit
+from railvib.labels import displacement_unit
 
 __all__ = [
     "QUANTITY_UNITS",

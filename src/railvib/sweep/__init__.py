@@ -23,7 +23,7 @@ from railvib.sweep.dataset import (
     sweep_dataset,
 )
 from railvib.sweep.layout import SweepLayout
-from railvib.sweep.runner import SweepInterrupted, describe_run, run_sweep
+from railvib.sweep.runner import SweepInterrupted, check_scheduler, describe_run, run_sweep
 from railvib.sweep.spec import SweepAxis, SweepSpec, load_sweep, sweep_from_dict
 from railvib.sweep.store import (
     ChunkStore,
@@ -40,6 +40,7 @@ __all__ = [
     "SweepAxis",
     "SweepMismatchError",
     "SweepSpec",
+    "check_scheduler",
     "compute_chunk",
     "default_output_folder",
     "default_plot_folder",

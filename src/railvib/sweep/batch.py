@@ -20,9 +20,10 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.case import Case, build_grid, build_spectrum, build_system, case_from_dict
 from railvib.case.load import merge_case_dicts
 from railvib.coupling import CoupledSystem, coupled_response
+from railvib.labels import response_labels
 from railvib.outputs import ContactCheck
 from railvib.pem import excitation_vector, wheel_delays
-from railvib.response import FRF, response_labels
+from railvib.response import FRF
 from railvib.results.stats import summary, summary_names
 from railvib.results.variables import compute_variables
 from railvib.sweep.layout import SweepLayout, is_cheap_field

@@ -19,7 +19,7 @@ from railvib.results.stats import summary_attrs, summary_names
 from railvib.results.units import QUANTITY_UNITS, summary_quantity, with_unit_coordinates
 from railvib.results.variables import VARIABLES
 from railvib.sweep.batch import CONTACT_SUMMARY, case_labels
-from railvib.sweep.folder import CSV_NAME, NETCDF_NAME, PLOTS_NAME
+from railvib.sweep.folder import CSV_NAME, MANIFEST, NETCDF_NAME, PLOTS_NAME, ZARR_NAME
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
 
@@ -178,15 +178,55 @@ def load_sweep_dataset(path: str | Path) -> xr.Dataset:
     -------
     xarray.Dataset
         Loaded into memory.
+
+    Raises
+    ------
+    CaseError
+        ``sweep = '<path>': ...`` naming what `path` is instead: a ``railvib run``
+        folder or result, an unfinished sweep, a file that is not netCDF, ...
     """
     path = Path(path)
-    if path.is_dir() and (path / "sweep.zarr").is_dir():
-        path = path / "sweep.zarr"
-    if path.suffix == ".nc" and path.is_file():
-        return load_netcdf(path)  # booleans (linear_model_valid) come back boolean
+    if path.is_dir() and (path / ZARR_NAME).is_dir():
+        path = path / ZARR_NAME
     if path.is_dir():
-        return xr.open_zarr(path, consolidated=True).load()
-    raise CaseError("sweep", str(path), "a sweep folder, a sweep.zarr store or a .nc file")
+        if not any((path / name).exists() for name in _ZARR_MARKERS):
+            raise CaseError("sweep", str(path), _not_a_sweep_folder(path))
+        try:
+            return xr.open_zarr(path, consolidated=True).load()
+        except (OSError, ValueError, KeyError) as exc:  # zarr's errors derive from these
+            raise CaseError("sweep", str(path), f"a readable sweep.zarr store ({exc})") from None
+    if path.suffix == ".nc" and path.is_file():
+        try:
+            ds = load_netcdf(path)  # booleans (linear_model_valid) come back boolean
+        except (OSError, ValueError) as exc:
+            reason = " ".join(str(exc).split())[:120]
+            raise CaseError("sweep", str(path), f"a readable netCDF file ({reason})") from None
+        if "sweep_dims" not in ds.attrs:
+            raise CaseError("sweep", str(path), f"a sweep's netCDF export; {_RUN_RESULT}")
+        return ds
+    raise CaseError("sweep", str(path), f"{_WHAT}; this is not one")
+
+
+#: what a sweep result is, as said in errors
+_WHAT = "a sweep folder (written by `railvib sweep`), its sweep.zarr store or a .nc export"
+#: files that mark a folder as a Zarr store (v2 consolidated or not, v3)
+_ZARR_MARKERS = (".zmetadata", ".zgroup", "zarr.json")
+_RUN_RESULT = (
+    "this is the result of `railvib run`, which draws its PSD plots itself (psd_*.png "
+    "next to results.nc; run it without --no-plots)"
+)
+
+
+def _not_a_sweep_folder(folder: Path) -> str:
+    """Why `folder` is not a sweep result, and what to do."""
+    if (folder / "results.nc").is_file() or (folder / "summary.md").is_file():
+        return f"{_WHAT}; {_RUN_RESULT.replace('the result', 'a folder')}"
+    if (folder / MANIFEST).is_file():
+        return (
+            f"{_WHAT}; this sweep is unfinished (no {ZARR_NAME} yet): rerun the same "
+            "`railvib sweep` command to finish it"
+        )
+    return f"{_WHAT}; this folder holds none"
 
 
 def save_sweep_netcdf(ds: xr.Dataset, path: str | Path) -> Path:

@@ -21,14 +21,17 @@ from typing import Any
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib.errors import RailvibError
+from railvib.errors import CaseError, RailvibError
 from railvib.sweep.batch import compute_chunk
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.progress import case_progress
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.store import ChunkStore
 
-__all__ = ["SweepInterrupted", "describe_run", "run_sweep"]
+__all__ = ["SweepInterrupted", "check_scheduler", "describe_run", "run_sweep"]
+
+#: how to install what a Dask cluster needs (the ``sweep`` extra: dask[distributed])
+INSTALL_SWEEP_EXTRA = 'pip install "railvib[sweep]"'
 
 ChunkResult = tuple[int, dict[str, NDArray[Any]]]
 
@@ -39,6 +42,35 @@ class SweepInterrupted(RailvibError):
 
 def _compute(spec: SweepSpec, chunk_id: int) -> ChunkResult:
     return chunk_id, compute_chunk(spec, chunk_id)
+
+
+def check_scheduler(scheduler: Any) -> None:
+    """Refuse a Dask scheduler when ``distributed`` is not installed, before any work.
+
+    Local runs (any number of worker processes) use :mod:`concurrent.futures` and need
+    nothing extra; only a cluster needs the optional ``sweep`` dependencies.
+
+    Parameters
+    ----------
+    scheduler : str, distributed.Client or None
+        The scheduler of :func:`run_sweep` (None: local processes, nothing to check).
+
+    Raises
+    ------
+    CaseError
+        ``scheduler = '<address>': needs the Dask "distributed" package: pip install
+        "railvib[sweep]"``.
+    """
+    if scheduler is None:
+        return
+    try:
+        import distributed  # noqa: F401  (the optional dependency of Dask runs)
+    except ImportError:
+        raise CaseError(
+            "scheduler",
+            scheduler if isinstance(scheduler, str) else type(scheduler).__name__,
+            f'a Dask cluster needs the "distributed" package: {INSTALL_SWEEP_EXTRA}',
+        ) from None
 
 
 def describe_run(spec: SweepSpec, out: str | Path, *, scheduler: str | None = None) -> str:
@@ -105,7 +137,10 @@ def run_sweep(
         `out` holds chunks of a different sweep.
     SweepInterrupted
         A local worker process died; rerun to resume.
+    CaseError
+        A `scheduler` given without Dask's ``distributed`` installed (checked first).
     """
+    check_scheduler(scheduler)
     store = ChunkStore(out, spec)
     store.open(overwrite=overwrite)
     todo = store.missing()

@@ -47,10 +47,9 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_dicts
 from railvib.case.errors import case_error
-from railvib.errors import CaseError, RailvibDeprecationWarning
+from railvib.errors import CaseError, RailvibDeprecationWarning, did_you_mean
 from railvib.io import read_toml
 from railvib.outputs import LOSS_OF_CONTACT_NOTE
-from railvib.presets import load_preset
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
 
 __all__ = [
@@ -154,7 +153,10 @@ class SweepFile(_Model):
         for i, name in enumerate(self.variables):
             if name not in PER_FREQUENCY_VARIABLES:
                 raise CaseError(
-                    f"variables[{i}]", name, f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    f"variables[{i}]",
+                    name,
+                    f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    + did_you_mean(name, PER_FREQUENCY_VARIABLES),
                 )
         if self.base is None and self.case is None:
             raise CaseError("case", "<missing>", "a [case] table and/or base = PATH")
@@ -363,11 +365,17 @@ class SweepSpec:
         for i, name in enumerate(variables):
             if name not in PER_FREQUENCY_VARIABLES:
                 raise CaseError(
-                    f"variables[{i}]", name, f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    f"variables[{i}]",
+                    name,
+                    f"one of {', '.join(PER_FREQUENCY_VARIABLES)}"
+                    + did_you_mean(name, PER_FREQUENCY_VARIABLES),
                 )
         if self.summary_variable not in SUMMARY_VARIABLES:
             raise CaseError(
-                "summary_variable", self.summary_variable, f"one of {', '.join(SUMMARY_VARIABLES)}"
+                "summary_variable",
+                self.summary_variable,
+                f"one of {', '.join(SUMMARY_VARIABLES)}"
+                + did_you_mean(self.summary_variable, SUMMARY_VARIABLES),
             )
         if not isinstance(self.base_case, Mapping):
             raise CaseError("base_case", type(self.base_case).__name__, "a resolved case table")
@@ -502,7 +510,20 @@ def load_sweep(path: str | Path) -> SweepSpec:
         With the dotted field name, the value and what is allowed.
     """
     path = Path(path)
-    return sweep_from_dict(read_toml(path, "sweep"), base_dir=path.parent)
+    hint = "docs/sweeps.md shows one"
+    data = read_toml(path, "sweep", hint)
+    if "axes" not in data and "case" not in data and "base" not in data and _CASE_KEYS & set(data):
+        raise CaseError(
+            "sweep",
+            str(path),
+            "a sweep file ([case] or base = PATH, and [[axes]]); this is a case file: run it "
+            f'with `railvib run`, or write base = "{path.name}" in a sweep file ({hint})',
+        )
+    return sweep_from_dict(data, base_dir=path.parent)
+
+
+#: top-level keys of a case file (a case given where a sweep file is expected)
+_CASE_KEYS = {"preset", "rail_model", "speed_kmh", "vehicle", "track", "irregularity"}
 
 
 def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> SweepSpec:
@@ -582,11 +603,9 @@ def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
         if spec.case and "preset" in spec.case:
             raise CaseError("case.preset", spec.case["preset"], "not allowed together with base")
     if spec.case:
-        override = copy.deepcopy(spec.case)
-        preset = override.pop("preset", None)
-        if preset is not None:
-            data = load_preset(preset)
-        data = merge_case_dicts(data, override)
+        # a preset stays a preset (case_from_dict merges it), so the case knows which of
+        # its values the sweep file gives and which it inherits (e.g. the RMS bands)
+        data = merge_case_dicts(data, copy.deepcopy(spec.case))
     return _case_dump(case_from_dict(data, base_dir=base_dir))
 
 

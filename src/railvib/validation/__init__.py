@@ -16,9 +16,11 @@ welch_psd, welch_expectation, confidence_band
     Statistics.
 validate_case, ValidationSettings, ValidationResult, plot_overlays
     The three-way comparison of issue 5.
-validate_to_folder, write_validation, agreement_markdown
-    The comparison's files (overlays, Markdown, netCDF): the library behind
-    ``railvib validate``.
+validate_to_folder, write_validation, agreement_markdown, agreement_text
+    The comparison's files (overlays, Markdown, netCDF) and its terminal table: the
+    library behind ``railvib validate``.
+check_scope
+    What the reference models can check (Euler-Bernoulli rail, viscous pad), tested first.
 
 Every reference model takes the :class:`~railvib.coupling.CoupledSystem` of the
 symplectic path (its parameters only); the older parameter-bundle call forms still
@@ -30,9 +32,15 @@ from railvib.validation.coupled import FiniteCoupledSystem, FiniteFRF, finite_tr
 from railvib.validation.finite_track import FiniteTrack, hermite_element_matrices
 from railvib.validation.monte_carlo import MonteCarloResult, MonteCarloSettings, monte_carlo
 from railvib.validation.plots import DEFAULT_PLOT_RESPONSES, plot_overlays
-from railvib.validation.report import agreement_markdown, validate_to_folder, write_validation
+from railvib.validation.report import (
+    agreement_markdown,
+    agreement_text,
+    validate_to_folder,
+    write_validation,
+)
 from railvib.validation.result import ValidationResult, ValidationSettings, monte_carlo_work
 from railvib.validation.samples import sample_profile, wheel_irregularities
+from railvib.validation.scope import check_scope
 from railvib.validation.statistics import (
     WelchEstimate,
     confidence_band,
@@ -58,6 +66,8 @@ __all__ = [
     "ValidationSettings",
     "WelchEstimate",
     "agreement_markdown",
+    "agreement_text",
+    "check_scope",
     "confidence_band",
     "finite_track_frf",
     "hermite_element_matrices",

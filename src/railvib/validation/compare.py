@@ -27,6 +27,7 @@ from railvib.validation._legacy import bundle_form
 from railvib.validation.coupled import FiniteCoupledSystem
 from railvib.validation.monte_carlo import MonteCarloResult, monte_carlo
 from railvib.validation.result import ValidationResult, ValidationSettings
+from railvib.validation.scope import check_scope
 from railvib.validation.statistics import welch_expectation
 
 __all__ = ["validate_case"]
@@ -59,8 +60,12 @@ def validate_case(
     settings: ValidationSettings | None = None,
     seed: int = 0,
     progress: Callable[[int], None] | None = None,
+    frf_progress: Callable[[int], None] | None = None,
 ) -> ValidationResult:
     """Compare symplectic + PEM with the finite-track model and a time-domain Monte Carlo.
+
+    The case is first checked against what the reference models can represent
+    (:func:`railvib.validation.scope.check_scope`), before any computing.
 
     The deprecated form ``validate_case(vehicle, track, contact_stiffness,
     leading_wheel_position, speed, spectrum, ...)`` still works and warns.
@@ -80,14 +85,24 @@ def validate_case(
     progress : callable, optional
         Called with Newmark steps done (times realisations); the total is
         :func:`~railvib.validation.monte_carlo_work`.
+    frf_progress : callable, optional
+        Called with 1 after each frequency of the finite-track comparison; the total
+        is ``settings.n_frf``.
 
     Returns
     -------
     ValidationResult
         Datasets with PSDs in (m/s^2)^2/Hz ((rad/s^2)^2/Hz for pitch), timings in s.
+
+    Raises
+    ------
+    CaseError
+        A case the reference models cannot check (a Timoshenko rail, a rail loss
+        factor, a pad that is not viscous), at once.
     """
+    check_scope(system)
     s = settings if settings is not None else ValidationSettings()
-    frf, frf_timings = _finite_track_comparison(system, spectrum, s)
+    frf, frf_timings = _finite_track_comparison(system, spectrum, s, frf_progress)
     mc_result, mc_seconds = _timed(
         lambda: monte_carlo(system, spectrum, settings=s.monte_carlo, seed=seed, progress=progress)
     )
@@ -137,7 +152,10 @@ def _psd_units(labels: tuple[str, ...]) -> list[str]:
 
 
 def _finite_track_comparison(
-    system: CoupledSystem, spectrum: SpatialSpectrum, s: ValidationSettings
+    system: CoupledSystem,
+    spectrum: SpatialSpectrum,
+    s: ValidationSettings,
+    progress: Callable[[int], None] | None = None,
 ) -> tuple[xr.Dataset, dict[str, float]]:
     """PEM vs the finite track on the log grid: the ``frf`` dataset and the two timings."""
     f = np.geomspace(s.f_min, s.f_max_frf, s.n_frf)
@@ -145,7 +163,7 @@ def _finite_track_comparison(
     finite = FiniteCoupledSystem.from_system(
         system, margin_spans=s.frf_margin_spans, elements_per_span=s.frf_elements_per_span
     )
-    h, fin_seconds = _timed(lambda: finite.frf(f))
+    h, fin_seconds = _timed(lambda: finite.frf(f, progress))
     s_fin, psd_seconds = _timed(lambda: _acceleration_psd(h, spectrum, system.speed))
     ds = xr.Dataset(
         {

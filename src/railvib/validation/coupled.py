@@ -14,6 +14,7 @@ frequency with ``r_j = exp(-i omega t_j)`` (unit irregularity, delayed by
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -197,13 +198,15 @@ class FiniteCoupledSystem:
         """``k_H G^T`` (n_dof, n_wheel): global force per unit irregularity at each wheel, N/m."""
         return (self.contact_stiffness * self.contact_matrix.T).tocsc()
 
-    def frf(self, f: ArrayLike) -> FiniteFRF:
+    def frf(self, f: ArrayLike, progress: Callable[[int], None] | None = None) -> FiniteFRF:
         """Responses to a unit irregularity delayed at each wheel, by direct sparse solves.
 
         Parameters
         ----------
         f : array_like
             Frequencies in Hz (> 0).
+        progress : callable, optional
+            Called with 1 after each frequency is solved (one sparse LU each).
 
         Returns
         -------
@@ -234,6 +237,8 @@ class FiniteCoupledSystem:
             out_v[k] = u[:nv]
             out_r[k] = u[self.rail_dofs]
             out_p[k] = self.contact_stiffness * (g @ u - r)
+            if progress is not None:
+                progress(1)
         return FRF(f=f, vehicle=out_v, rail=out_r, contact_force=out_p, dofs=v.dofs)
 
 

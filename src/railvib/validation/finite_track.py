@@ -27,8 +27,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
-from railvib.pads.simple import SpringDamper
 from railvib.track.periodic import Rail
+from railvib.validation.scope import check_pad, check_rail, viscous_pad
 
 __all__ = ["FiniteTrack", "hermite_element_matrices"]
 
@@ -121,12 +121,7 @@ class FiniteTrack:
         d = self.sleeper_spacing
         if not (np.isfinite(d) and d > 0):
             raise CaseError("track.sleeper_spacing", d, "must be > 0 (m)")
-        if self.rail.is_timoshenko:
-            raise CaseError(
-                "track.rail.shear_stiffness",
-                self.rail.shear_stiffness,
-                "omitted: the finite-track validation model is an Euler-Bernoulli rail",
-            )
+        check_rail(self.rail, time_domain=False)
         if self.last_sleeper - self.first_sleeper < 1:
             raise CaseError("finite_track.last_sleeper", self.last_sleeper, "> first_sleeper")
         if int(self.elements_per_span) < 1:
@@ -306,20 +301,14 @@ class FiniteTrack:
         Raises
         ------
         CaseError
-            If the pad is not a spring-damper or the rail has a loss factor, which
-            have no exact time-domain counterpart here.
+            If the pad is not a spring-damper (or the two-rail doubling of one) or the
+            rail has a loss factor, which have no exact time-domain counterpart here.
         """
-        if not isinstance(self.pad, SpringDamper):
-            raise CaseError(
-                "track.pad.model",
-                getattr(self.pad, "model_name", type(self.pad).__name__),
-                "spring_damper (the time-domain model needs a viscous pad)",
-            )
-        k_pad, c_pad = self.pad.stiffness_n_per_m, self.pad.damping_ns_per_m
-        if self.rail.loss_factor != 0.0:
-            raise CaseError(
-                "track.rail.loss_factor", self.rail.loss_factor, "0 for the time-domain model"
-            )
+        check_pad(self.pad)
+        check_rail(self.rail, time_domain=True)
+        viscous = viscous_pad(self.pad)
+        assert viscous is not None, "check_pad accepts viscous pads only"
+        k_pad, c_pad = viscous
         n_sl = self.sleeper_dofs.size
         k = self.rail_stiffness_matrix + self._sleeper_diagonal(np.full(n_sl, float(k_pad)))
         c = self._sleeper_diagonal(float(c_pad) + self.absorber_profile)

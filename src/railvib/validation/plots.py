@@ -7,7 +7,7 @@ from pathlib import Path
 from matplotlib.figure import Figure
 
 from railvib.io import save_figure
-from railvib.response import rail_label
+from railvib.labels import rail_label
 from railvib.validation.result import ValidationResult
 
 __all__ = ["DEFAULT_PLOT_RESPONSES", "plot_overlays"]

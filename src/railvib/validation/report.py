@@ -25,9 +25,21 @@ from railvib.results.dataset import save_netcdf
 from railvib.spectra.base import SpatialSpectrum
 from railvib.validation.compare import validate_case
 from railvib.validation.plots import plot_overlays
-from railvib.validation.result import ValidationResult, ValidationSettings
+from railvib.validation.result import (
+    BAND_FRACTION,
+    FRF_TOLERANCE,
+    ValidationResult,
+    ValidationSettings,
+)
+from railvib.validation.scope import check_scope
 
-__all__ = ["DATASETS", "agreement_markdown", "validate_to_folder", "write_validation"]
+__all__ = [
+    "DATASETS",
+    "agreement_markdown",
+    "agreement_text",
+    "validate_to_folder",
+    "write_validation",
+]
 
 #: the datasets of a :class:`ValidationResult` written as ``<name>_<key>.nc``
 DATASETS = ("frf", "mc", "table")
@@ -54,6 +66,49 @@ def agreement_markdown(result: ValidationResult, name: str) -> str:
         f"Timings (s): {result.timings}\n\nAcceptance (issue 5): "
         f"{'PASSED' if result.passed else 'FAILED'}\n"
     )
+
+
+def agreement_text(result: ValidationResult, name: str, report: str | Path | None = None) -> str:
+    """The per-response agreement of `result` as a plain table for an 80-column terminal.
+
+    The Markdown report (:func:`agreement_markdown`, written as ``<name>_agreement.md``)
+    holds the same numbers and the per-band table, which is wider than a terminal.
+
+    Parameters
+    ----------
+    result : ValidationResult
+        Output of :func:`~railvib.validation.validate_case`.
+    name : str
+        Name of the case, for the title.
+    report : str or pathlib.Path, optional
+        The Markdown report file, named under the table.
+
+    Returns
+    -------
+    str
+        Lines of at most 72 characters: per response, the finite-track maximum relative
+        error (1) and the fractions of Welch bins with PEM inside the Monte Carlo band
+        (windowed and raw, %), then the verdict.
+    """
+    raw = result.mc["inside_raw"].mean("frequency")
+    lines = [
+        f"Agreement per response ({name})",
+        f"{'response':<18}{'FE max rel. error':>19}{'PEM in MC band':>17}{'raw PEM in':>14}",
+    ]
+    for resp in result.frf["response"].values:
+        err = float(result.max_relative_error.sel(response=resp))
+        inside = float(result.fraction_inside.sel(response=resp))
+        lines.append(
+            f"{resp!s:<18}{err:>19.2e}{inside:>16.1%} {float(raw.sel(response=resp)):>13.1%}"
+        )
+    verdict = "PASSED" if result.passed else "FAILED"
+    lines.append(
+        f"Acceptance (issue 5): {verdict} (FE error <= {FRF_TOLERANCE:.0%}, PEM in band "
+        f">= {BAND_FRACTION:.0%})"
+    )
+    if report is not None:
+        lines.append(f"per-band tables and timings: {report}")
+    return "\n".join(lines)
 
 
 def write_validation(
@@ -93,8 +148,12 @@ def validate_to_folder(
     seed: int = 0,
     progress: Callable[[int], None] | None = None,
     name: str = "case",
+    frf_progress: Callable[[int], None] | None = None,
 ) -> ValidationResult:
     """Validate one coupled system three ways and write the comparison into `outdir`.
+
+    A case outside the reference models' scope is refused before anything is
+    computed or written (:func:`railvib.validation.scope.check_scope`).
 
     Parameters
     ----------
@@ -115,13 +174,24 @@ def validate_to_folder(
         :func:`~railvib.validation.monte_carlo_work`.
     name : str
         Prefix of the file names (see :func:`write_validation`).
+    frf_progress : callable, optional
+        Called with 1 after each frequency of the finite-track comparison; the total
+        is ``settings.n_frf``.
 
     Returns
     -------
     ValidationResult
         PSDs in (m/s^2)^2/Hz ((rad/s^2)^2/Hz for pitch), timings in s.
     """
+    check_scope(system)
     Path(outdir).mkdir(parents=True, exist_ok=True)
-    result = validate_case(system, spectrum, settings=settings, seed=seed, progress=progress)
+    result = validate_case(
+        system,
+        spectrum,
+        settings=settings,
+        seed=seed,
+        progress=progress,
+        frf_progress=frf_progress,
+    )
     write_validation(result, outdir, name)
     return result

@@ -22,7 +22,7 @@ from scipy.sparse import hstack
 from scipy.sparse.linalg import splu
 
 from railvib.errors import CaseError
-from railvib.response import response_labels
+from railvib.labels import response_labels
 from railvib.validation.coupled import FiniteCoupledSystem
 
 __all__ = ["TimeHistory", "newmark_frequency_warp", "simulate_time_domain"]

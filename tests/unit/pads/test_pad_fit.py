@@ -19,7 +19,7 @@ from railvib.pads import (
 )
 
 TRUE_BASE = FractionalZener(3e7, 6e8, 1e-7, 0.35)
-TRUE_WLF = WLF(8.064, 111.6, 20.0)  # physics.md 5.1 constants at 20 degC
+TRUE_WLF = WLF(8.064, 111.6, 20.0)  # docs/reference-values.md §4: Tg = -40 degC at 20 degC
 
 
 def synthetic(freqs=None, temps=None):
@@ -136,3 +136,22 @@ def test_csv_reader_units_and_loss_factor(tmp_path):
     p.write_text("temperature_c,frequency_hz,storage_n_per_m,loss_n_per_m\n20,1,3e7,-1\n")
     with pytest.raises(CaseError, match=r"measurements.loss_n_per_m\[0\] = -1.0"):
         read_measurements_csv(p)
+
+
+def test_a_parameter_ending_at_a_search_bound_is_noted():
+    # a standard (alpha = 1) Zener solid: the fractional order is pushed to its bound 1
+    f = np.geomspace(1.0, 1000.0, 40)
+    standard = FractionalZener(3e7, 3e8, 1e-3, 1.0)
+    fit = fit_model(f, standard.stiffness(f), "zener")
+    assert fit.model.alpha == pytest.approx(1.0, abs=1e-4)  # the optimiser stays inside
+    assert fit.notes == (
+        "alpha = 1 ended at its upper search bound (1): the data push it there, so this model "
+        "may not suit them",
+    )
+    assert f"note: {fit.notes[0]}" in fit.summary()
+
+
+def test_no_note_when_the_fit_is_inside_its_bounds():
+    f = np.geomspace(1.0, 1000.0, 40)
+    fit = fit_model(f, TRUE_BASE.stiffness(f), "zener")
+    assert fit.notes == ()

@@ -1,7 +1,7 @@
 """WLF, re-referencing (seed Eqs. 22-25) and the vertical factor (Eq. 26) against hand values.
 
-Expected numbers come from shared/physics.md section 5.1 (worked example, computed
-independently for those notes) and from the formulas evaluated by hand below.
+Expected numbers come from docs/reference-values.md section 4 (the worked example,
+computed independently) and from the formulas evaluated by hand below.
 """
 
 import numpy as np
@@ -18,7 +18,8 @@ from railvib.pads import (
 
 
 def test_rereferencing_from_tg_matches_worked_example():
-    # physics.md 5.1: Tg = -40, reference 20 degC -> Delta = 60 K, C1' = 8.064, C2' = 111.6 K
+    # docs/reference-values.md §4: Tg = -40, reference 20 degC -> Delta = 60 K,
+    # C1' = 8.064, C2' = 111.6 K
     w = WLF.universal(-40.0).rereferenced(20.0)
     assert w.c1 == pytest.approx(17.44 * 51.6 / (51.6 + 60.0))  # Eq. 23 (corrected), by hand
     assert w.c1 == pytest.approx(8.064, abs=5e-4)  # the note rounds to 3 decimals
@@ -26,7 +27,8 @@ def test_rereferencing_from_tg_matches_worked_example():
     assert w.reference_temperature_c == 20.0
 
 
-# physics.md 5.1 table: a 0.3 Hz test at T maps to these 20 degC frequencies (3 significant digits)
+# docs/reference-values.md §4 table: a 0.3 Hz test at T maps to these 20 degC frequencies
+# (3 significant digits)
 REDUCED_TG40 = [
     (17.5, 0.46),
     (10.0, 1.87),
@@ -73,7 +75,7 @@ def test_rereferencing_preserves_the_shift_law():
 
 @pytest.mark.parametrize(("t", "expected"), [(-10.0, 0.911), (-30.0, 0.850)])
 def test_vertical_factor(t, expected):
-    # physics.md 5.1, with the seed's a_f = 4.8e-4 /K and reference 20 degC; 3 digits
+    # docs/reference-values.md §4, with the paper's a_f = 4.8e-4 /K and reference 20 degC; 3 digits
     assert vertical_shift_factor(t, 20.0) == pytest.approx(expected, abs=6e-4)
     t_k, t0_k = t + 273.15, 293.15
     assert vertical_shift_factor(t, 20.0) == pytest.approx(

@@ -1,4 +1,4 @@
-"""Density-transform identities of physics.md section 1.1 (closed forms, no stored numbers)."""
+"""Density-transform identities of docs/spectra.md, "Conventions" (closed forms, no numbers)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
-"""Test vectors of physics.md sections 1.2-1.8 (the numbers are copied from there).
+"""Test vectors of docs/spectra.md, "Reference values" (the numbers are copied from there).
 
-Tolerance policy: physics.md quotes its [calc] numbers to 3 or 4 significant figures, so a
+Tolerance policy: the document quotes its computed numbers to 3 or 4 significant figures, so a
 correct implementation may differ from the quoted value by up to half a unit in the last
 quoted digit. Each test uses ``rel`` slightly above that rounding bound (stated inline);
 the quadrature itself is accurate to ~1e-10 relative and adds nothing visible.

@@ -10,7 +10,7 @@ from railvib.spectra import FRAClass, Tabulated
 
 TWO_PI = 2.0 * np.pi
 
-# FRA class 5 written out from its closed form (physics.md section 1.2), in m^2/(rad/m).
+# FRA class 5 written out from its closed form (docs/spectra.md), in m^2/(rad/m).
 A_V5, OMEGA_C = 0.2095, 0.8245
 
 
