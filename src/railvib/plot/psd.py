@@ -21,7 +21,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.ticker import LogFormatterSciNotation
+from matplotlib.ticker import LogFormatterSciNotation, NullLocator
 from numpy.typing import ArrayLike
 
 from railvib.io import new_figure, save_figure
@@ -97,9 +97,16 @@ def _superscripts(axis: Any) -> None:
 
 
 def _log(ax: Axes, axis: str) -> None:
-    """Make the x or y `axis` of `ax` logarithmic, labelled by :class:`SuperscriptLogFormatter`."""
+    """Make the x or y `axis` of `ax` logarithmic, labelled by :class:`SuperscriptLogFormatter`.
+
+    A PSD (y) axis spans many decades: it keeps a tick and a grid line per decade and
+    no minor ticks, which would be unreadable there and cost most of a figure's drawing
+    time (hundreds of tick objects); the frequency (x) axis keeps its minor grid.
+    """
     getattr(ax, f"set_{axis}scale")("log")
     _superscripts(ax.xaxis if axis == "x" else ax.yaxis)
+    if axis == "y":
+        ax.yaxis.set_minor_locator(NullLocator())
 
 
 def _new_axes(ax: Axes | None, figsize: tuple[float, float]) -> Axes:
