@@ -14,6 +14,7 @@ each frequency costs a few 4x4 operations once the vehicle is condensed.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
+from railvib.stack import dot, entries, put, solve, stacked, to_numpy
 from railvib.track.periodic import PeriodicTrack
 from railvib.vehicle.assembly import Vehicle, WheelCondensation
 
@@ -131,8 +133,36 @@ def coupled_response(
     vehicle_displacement, contact_force, rail_displacement : numpy.ndarray
         ``(n_freq, n_dof, n_rhs)``, ``(n_freq, n_wheel, n_rhs)``, ``(n_freq, n_wheel, n_rhs)``.
     """
-    eye = np.eye(receptance.shape[-1])
-    flexibility = receptance + eye / contact_stiffness
-    u_w = np.linalg.solve(flexibility @ vehicle.stiffness + eye, excitation)
-    force = -(vehicle.stiffness @ u_w)
-    return vehicle.recovery @ u_w, force, receptance @ force
+    return _coupled(vehicle, receptance, contact_stiffness, excitation, np)
+
+
+def _coupled(
+    vehicle: WheelCondensation, receptance: Any, contact_stiffness: float, excitation: Any, xp: Any
+) -> tuple[Any, Any, Any]:
+    """:func:`coupled_response` in the stacked layout, in array namespace `xp`."""
+    rec = entries(receptance, xp)
+    s = vehicle.stiffness_entries
+    n = len(rec)
+    flex = [
+        [rec[a][b] + (1.0 / contact_stiffness if a == b else 0.0) for b in range(n)]
+        for a in range(n)
+    ]
+    system = [
+        [dot(flex[a], [s[c][b] for c in range(n)]) + (1.0 if a == b else 0.0) for b in range(n)]
+        for a in range(n)
+    ]
+    rhs = [excitation[:, a, :] for a in range(n)]
+    u_w, bad = solve(system, rhs, xp)
+    if bool(xp.any(bad)):  # pivots too small for elimination without exchanges: LAPACK
+        a_bad = to_numpy(stacked(system, xp))[to_numpy(bad)]
+        fixed = np.linalg.solve(a_bad, to_numpy(excitation)[to_numpy(bad)])
+        u_w = [put(u_w[a], bad, fixed[:, a, :], xp) for a in range(n)]
+    force = [-_apply(s[a], u_w) for a in range(n)]
+    vehicle_u = [_apply(row, u_w) for row in vehicle.recovery_entries]
+    rail = [_apply(rec[a], force) for a in range(n)]
+    return stacked(vehicle_u, xp), stacked(force, xp), stacked(rail, xp)
+
+
+def _apply(row: list[Any], x: list[Any]) -> Any:
+    """``sum_b row[b] x[b]`` for entries ``(N,)`` and right-hand sides ``(N, k)``."""
+    return dot([r[:, None] for r in row], x)

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -308,27 +309,36 @@ class PeriodicTrack(TrackModel):
                 raise CaseError(name, list(x * d), "finite positions (m)")
         bay_load, xi = _bay(x_load)
         bay_obs, eta = _bay(x_obs)
-        # wave amplitudes (a1, a2, b1, b2) for each load: [R, -L] c = B(-xi) e4, where the
-        # last column of B(-xi) is (s3, s2, s1, s0)(-xi)
-        amps = np.empty((w.f.size, 4, x_load.size), dtype=complex)
-        for xi_u in np.unique(xi):
-            rhs = self._last_column(w, -xi_u)
-            sol = np.einsum("fij,fj->fi", w._matching_inv, rhs)
-            amps[:, :, xi == xi_u] = sol[:, :, None]
-        # displacement of each wave at each observation point's local coordinate
-        out = np.empty((w.f.size, x_obs.size, x_load.size), dtype=complex)
-        for eta_u in np.unique(eta):
-            row = self._first_row(w, eta_u)
-            disp_r = np.einsum("fk,fkj->fj", row, w.right)
-            disp_l = np.einsum("fk,fkj->fj", row, w.left)
-            for i in np.flatnonzero(eta == eta_u):
-                for j in range(x_load.size):
-                    if x_obs[i] >= x_load[j]:
-                        m = bay_obs[i] - bay_load[j]
-                        out[:, i, j] = np.sum(amps[:, :2, j] * w.mu**m * disp_r, axis=1)
-                    else:
-                        m = bay_load[j] - bay_obs[i]
-                        out[:, i, j] = np.sum(amps[:, 2:, j] * w.mu**m * disp_l, axis=1)
+        xi_u, xi_of = _distinct(xi)
+        eta_u, eta_of = _distinct(eta)
+        # stacked layout: every small matrix as contiguous (n_freq,) arrays per entry
+        minv = _entries(w._matching_inv)
+        waves_at = (_entries(w.right), _entries(w.left))
+        # wave amplitudes (a1, a2, b1, b2) for each distinct load coordinate: [R, -L] c =
+        # B(-xi) e4, where the last column of B(-xi) is (s3, s2, s1, s0)(-xi)
+        amps = []
+        for u in xi_u:
+            rhs = _entries(self._last_column(w, -float(u)))
+            amps.append([_dot(minv[i], rhs) for i in range(4)])
+        # displacement of each wave at each distinct observation coordinate, right and left
+        disp = []
+        for u in eta_u:
+            row = _entries(self._first_row(w, float(u)))
+            disp.append([[_dot(row, [s[k] for s in v]) for k in range(2)] for v in waves_at])
+        mu = _entries(w.mu)
+        powers: dict[int, list[NDArray[np.complex128]]] = {}
+        out = np.empty((x_obs.size, x_load.size, w.f.size), dtype=np.complex128)
+        for i in range(x_obs.size):
+            for j in range(x_load.size):
+                # right of the load the right-going waves (a1, a2), left of it (b1, b2)
+                side = 0 if x_obs[i] >= x_load[j] else 1
+                m = int(abs(bay_obs[i] - bay_load[j]))
+                if m not in powers:
+                    powers[m] = [mu_k**m for mu_k in mu]
+                a = amps[xi_of[j]][2 * side : 2 * side + 2]
+                d_k = disp[eta_of[i]][side]
+                out[i, j] = a[0] * powers[m][0] * d_k[0] + a[1] * powers[m][1] * d_k[1]
+        out = np.ascontiguousarray(np.moveaxis(out, -1, 0))
         return out * w.scale
 
     def _first_row(self, w: TrackWaves, length: float) -> NDArray[np.complex128]:
@@ -470,6 +480,40 @@ def _bay(x: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]
     """Bay index and local coordinate in [0, 1) of dimensionless positions."""
     bay = np.floor(x).astype(np.int64)
     return bay, x - bay
+
+
+def _entries(a: NDArray[np.complex128]) -> Any:
+    """Entries of a stack ``(n, *shape)`` as contiguous ``(n,)`` arrays in lists nested by `shape`.
+
+    The stacked layout of the kernels (docs/design/0005-stacked-batches.md): each entry of
+    the small matrices is one contiguous array over the stack, so every operation is one
+    vectorised pass instead of a loop over tiny matrices.
+    """
+    return _nest(np.ascontiguousarray(np.moveaxis(a, 0, -1)))
+
+
+def _nest(a: NDArray[np.complex128]) -> Any:
+    return a if a.ndim == 1 else [_nest(x) for x in a]
+
+
+def _dot(u: list[NDArray[np.complex128]], v: list[NDArray[np.complex128]]) -> Any:
+    """``sum_k u[k] v[k]`` of entry arrays."""
+    out = u[0] * v[0]
+    for x, y in zip(u[1:], v[1:], strict=True):
+        out = out + x * y
+    return out
+
+
+def _distinct(
+    x: NDArray[np.float64], decimals: int = 12
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """Distinct local coordinates (equal to `decimals` places), and the one of each entry.
+
+    Wheel positions a whole number of bays apart give local coordinates that differ
+    by float noise (``0.5`` and ``0.4999999999999991``); they are one coordinate.
+    """
+    _, first, inverse = np.unique(np.round(x, decimals), return_index=True, return_inverse=True)
+    return x[first], inverse.ravel()
 
 
 def _propagation_constants(
