@@ -26,7 +26,7 @@ from railvib.outputs import (
     is_linear_model_valid,
     linearity_note,
 )
-from railvib.results.dataset import build_dataset, save_csv, save_netcdf
+from railvib.results.dataset import build_dataset_blocks, save_csv, save_netcdf
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
 from railvib.spectra.base import SpatialSpectrum
@@ -76,11 +76,11 @@ def run_system(
     Returns
     -------
     xarray.Dataset
-        See :func:`railvib.results.build_dataset`; with the contact check
+        See :func:`railvib.results.build_dataset` (built block by block of
+        :data:`railvib.coupling.FREQUENCY_BLOCK` frequencies); with the contact check
         (``contact_force_rms``, ``loss_of_contact_probability``, ``linear_model_valid``).
     """
     f = grid.f
-    frf = system.frf(f)
     s_r = spectrum.temporal(f, system.speed)
     pad_k = system.track.pad.stiffness(f, system.track.pad_temperature)
     extra = {
@@ -106,7 +106,8 @@ def run_system(
         **(attrs or {}),
     }
     settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
-    return derive(build_dataset(frf, s_r, attrs=meta, extra=extra), DEFAULT_OUTPUTS, settings)
+    ds = build_dataset_blocks(f, system.frf_blocks(f), s_r, attrs=meta, extra=extra)
+    return derive(ds, DEFAULT_OUTPUTS, settings)
 
 
 def contact_check(
