@@ -1,0 +1,160 @@
+"""Many cases of one structure solved in one stack: (case, frequency) points end to end.
+
+Cases that differ in their railpad (model, parameters, temperature) and in speed
+share the rail, the sleeper spacing, the vehicle, the contact and the wheel positions.
+Their ``n_case x n_freq`` points are laid on one leading axis (case-major) and solved by
+one call of each kernel (``docs/design/0005-stacked-batches.md``):
+
+* the pad's ``K*(f, T)`` of every case is evaluated into the stack, and the track's own
+  wave solution (:meth:`railvib.track.PeriodicTrack.receptance`) runs once over it, with
+  a stand-in pad (:class:`PadStack`) that hands it the stacked values;
+* the vehicle is condensed once on the frequencies and broadcast over the cases;
+* the coupled 4x4 solve runs on entry arrays ``(n_case, n_freq)``, each case with its
+  own speed's excitation.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
+from railvib.errors import CaseError
+from railvib.pads.base import PadModel
+from railvib.response import FRF
+from railvib.stack import dot, entries, put, solve, to_numpy
+from railvib.vehicle.assembly import WheelCondensation
+
+__all__ = ["PadStack", "frf_pad_stack"]
+
+
+@dataclass(frozen=True, eq=False)
+class PadStack(PadModel):
+    """Railpad stiffness given point by point over a stack (not a case-file model).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        ``K*`` in N/m at each point of the stack, ``(n_point,)``; :meth:`stiffness` must
+        be asked at exactly that many frequencies.
+    """
+
+    values: NDArray[np.complex128]
+
+    def __post_init__(self) -> None:
+        """Nothing to check: the values come from validated pad models."""
+
+    def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
+        """The stacked ``K*`` in N/m (`f`, Hz, only fixes the count; `temperature` ignored)."""
+        n = np.size(f)
+        if n != self.values.size:
+            raise CaseError("frequency", n, f"the {self.values.size} points of the pad stack")
+        return self.values
+
+
+def frf_pad_stack(
+    system: CoupledSystem,
+    f: ArrayLike,
+    pads: Sequence[PadModel],
+    temperatures: Sequence[float | None],
+    speeds: ArrayLike,
+    condensation: WheelCondensation | None = None,
+) -> FRF:
+    """Coupled FRFs of cases differing in pad, pad temperature and speed, in one stack.
+
+    Equals :meth:`railvib.coupling.CoupledSystem.frf` of each case (`system` with its
+    pad, temperature and speed replaced) to rounding.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track (rail, spacing), contact stiffness and wheel positions shared by
+        the cases; its pad and speed are not used.
+    f : array_like
+        Frequencies in Hz, ``(n_freq,)``.
+    pads : sequence of PadModel
+        The railpad of each case (complex stiffness per rail seat, N/m), ``n_case``.
+    temperatures : sequence of float or None
+        Pad temperature of each case, degC (None: the model's reference).
+    speeds : array_like
+        Vehicle speed of each case, m/s, ``(n_case,)``.
+    condensation : WheelCondensation, optional
+        The vehicle condensed onto its wheels at `f`, if already known.
+
+    Returns
+    -------
+    FRF
+        Arrays ``(n_case, n_freq, n)``: the case is the leading batch axis.
+    """
+    f = np.atleast_1d(np.asarray(f, dtype=float))
+    speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+    n_case = speeds.size
+    if len(pads) != n_case or len(temperatures) != n_case:
+        raise CaseError("pads", len(pads), f"one pad and temperature per speed ({n_case})")
+    # the distinct (pad, temperature) pairs: one track solution each
+    distinct: dict[tuple[int, float | None], int] = {}
+    which = np.array(
+        [
+            distinct.setdefault((id(p), t), len(distinct))
+            for p, t in zip(pads, temperatures, strict=True)
+        ]
+    )
+    first = {k: pads[int(np.flatnonzero(which == i)[0])] for k, i in distinct.items()}
+    k_pad = np.concatenate([first[k].stiffness(f, k[1]) for k in distinct]).astype(np.complex128)
+    x = system.wheel_positions
+    points = np.tile(f, len(distinct))
+    rec = np.empty((points.size, x.size, x.size), dtype=np.complex128)
+    for start in range(0, points.size, FREQUENCY_BLOCK):  # blocks sized to the cache
+        sl = slice(start, start + FREQUENCY_BLOCK)
+        track = replace(system.track, pad=PadStack(k_pad[sl]), pad_temperature=None)
+        rec[sl] = track.receptance(points[sl], x, x)
+    vehicle = system.vehicle
+    cond = vehicle.condensed_to_wheels(f) if condensation is None else condensation
+    delays = vehicle.wheel_offsets[None, :] / speeds[:, None]  # (n_case, n_w)
+    phase = -2j * np.pi * f[None, :, None] * delays[:, None, :]
+    excitation = np.exp(phase)  # (n_case, n_freq, n_w)
+    u_v, force, rail = _coupled_stack(cond, rec, system.contact_stiffness, excitation, which)
+    return FRF(f, u_v, rail, force, vehicle.dofs)
+
+
+def _coupled_stack(
+    vehicle: WheelCondensation,
+    receptance: NDArray[np.complex128],
+    contact_stiffness: float,
+    excitation: NDArray[np.complex128],
+    which: NDArray[np.int64],
+    xp: Any = np,
+) -> tuple[Any, Any, Any]:
+    """:func:`railvib.coupling.coupled_response` on entries ``(n_case, n_freq)``.
+
+    `receptance` holds ``(n_track * n_freq, n_w, n_w)``, the track solutions; case ``c``
+    uses number ``which[c]``. The vehicle's entries ``(n_freq,)`` broadcast over the cases.
+    """
+    n_freq = excitation.shape[1]
+    n_track = receptance.shape[0] // n_freq
+    rec = [[r.reshape(n_track, n_freq)[which] for r in row] for row in entries(receptance, xp)]
+    s = vehicle.stiffness_entries
+    n = len(rec)
+    flex = [
+        [rec[a][b] + (1.0 / contact_stiffness if a == b else 0.0) for b in range(n)]
+        for a in range(n)
+    ]
+    system = [
+        [dot(flex[a], [s[c][b] for c in range(n)]) + (1.0 if a == b else 0.0) for b in range(n)]
+        for a in range(n)
+    ]
+    rhs = [excitation[:, :, a] for a in range(n)]
+    u_w, bad = solve(system, rhs, xp)
+    if bool(xp.any(bad)):  # pivots too small for elimination without exchanges: LAPACK
+        mask = to_numpy(bad)
+        a_bad = np.stack([np.stack([to_numpy(e) for e in row], -1) for row in system], -2)
+        fixed = np.linalg.solve(a_bad[mask], to_numpy(excitation)[mask][..., None])[..., 0]
+        u_w = [put(u_w[a], bad, fixed[:, a], xp) for a in range(n)]
+    force = [-dot(s[a], u_w) for a in range(n)]
+    vehicle_u = [dot(row, u_w) for row in vehicle.recovery_entries]
+    rail = [dot(rec[a], force) for a in range(n)]
+    return tuple(xp.stack(v, axis=-1) for v in (vehicle_u, force, rail))
