@@ -174,7 +174,7 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     for name in CONTACT_SUMMARY:
         out[f"summary/{name}"] = check[name].values
     target = compute_variables(frf, s_r, [spec.summary_variable])[spec.summary_variable]
-    out.update(_summary(f, target, spec.rms_bands))
+    out.update(_summary(f, np.asarray(target, dtype=float), spec.rms_bands))
     return out
 
 
