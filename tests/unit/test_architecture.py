@@ -64,6 +64,8 @@ LAZY_LIBRARIES = {
     "scipy.linalg": "the Timoshenko span's matrix exponential only (railvib.track.beam)",
     "scipy.sparse.linalg": "the finite-track reference model only (railvib.validation)",
     "distributed": "a sweep on a Dask cluster only (railvib.sweep.runner)",
+    "dask.array": "lazy placeholders of a sweep's Zarr layout, only when assembling one",
+    "zarr": "a sweep's Zarr store, written chunk by chunk, only when assembling one",
     "cupy": "stacked kernels on a GPU, only when backend='cupy' is asked for (railvib.stack)",
     "jax": "stacked kernels on JAX, only when backend='jax' is asked for (railvib.stack)",
 }

@@ -146,7 +146,11 @@ def run_sweep(
     todo = store.missing()
     lay = store.layout
     sizes = {cid: _n(lay.chunk_shape(cid)) for cid in todo}
-    with _progress(progress, lay.n_cases, lay.n_cases - sum(sizes.values())) as advance:
+    # with `assemble`, each chunk goes into sweep.zarr as it arrives (overlapped with compute)
+    with (
+        store.streaming(assemble),
+        _progress(progress, lay.n_cases, lay.n_cases - sum(sizes.values())) as advance,
+    ):
         if scheduler is not None:
             results = _dask(spec, todo, scheduler)
         elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
@@ -158,9 +162,7 @@ def run_sweep(
             advance(sizes[cid])
     if not assemble:
         return None
-    ds = store.assemble()
-    store.write_zarr(ds)
-    return ds
+    return store.finish_zarr()
 
 
 def _n(shape: tuple[int, ...]) -> int:
