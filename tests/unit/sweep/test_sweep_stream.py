@@ -1,4 +1,4 @@
-"""The Zarr store written chunk by chunk holds exactly the chunk files; a stopped run leaves none."""
+"""The Zarr store written chunk by chunk holds the chunk files; a stopped run leaves none."""
 
 import numpy as np
 import pytest
