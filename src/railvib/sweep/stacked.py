@@ -27,9 +27,10 @@ from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
 from railvib.stack import dot, entries, put, solve, to_numpy
+from railvib.track.stacked import receptance_entries, stacked_waves
 from railvib.vehicle.assembly import WheelCondensation
 
-__all__ = ["PadStack", "frf_pad_stack"]
+__all__ = ["PadStack", "frf_pad_stack", "frf_stack"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,7 +118,7 @@ def frf_pad_stack(
     delays = vehicle.wheel_offsets[None, :] / speeds[:, None]  # (n_case, n_w)
     phase = -2j * np.pi * f[None, :, None] * delays[:, None, :]
     excitation = np.exp(phase)  # (n_case, n_freq, n_w)
-    u_v, force, rail = _coupled_stack(cond, rec, system.contact_stiffness, excitation, which)
+    u_v, rail, force = _coupled_stack(cond, rec, system.contact_stiffness, excitation, which)
     return FRF(f, u_v, rail, force, vehicle.dofs)
 
 
@@ -137,6 +138,17 @@ def _coupled_stack(
     n_freq = excitation.shape[1]
     n_track = receptance.shape[0] // n_freq
     rec = [[r.reshape(n_track, n_freq)[which] for r in row] for row in entries(receptance, xp)]
+    return _coupled_entries(vehicle, rec, contact_stiffness, excitation, xp)
+
+
+def _coupled_entries(
+    vehicle: WheelCondensation,
+    rec: list[list[Any]],
+    contact_stiffness: float,
+    excitation: Any,
+    xp: Any,
+) -> tuple[Any, Any, Any]:
+    """The coupled solve on receptance entries ``(n_case, n_freq)`` (excitation last: wheel)."""
     s = vehicle.stiffness_entries
     n = len(rec)
     flex = [
@@ -157,4 +169,88 @@ def _coupled_stack(
     force = [-dot(s[a], u_w) for a in range(n)]
     vehicle_u = [dot(row, u_w) for row in vehicle.recovery_entries]
     rail = [dot(rec[a], force) for a in range(n)]
-    return tuple(xp.stack(v, axis=-1) for v in (vehicle_u, force, rail))
+    out = tuple(xp.stack(v, axis=-1) for v in (vehicle_u, rail, force))
+    return out[0], out[1], out[2]
+
+
+def frf_stack(
+    system: CoupledSystem,
+    f: ArrayLike,
+    pad_stiffness: Any,
+    speeds: ArrayLike,
+    xp: Any = np,
+    block: int | None = None,
+) -> tuple[Any, Any, Any]:
+    """Coupled FRFs of cases with their own pad stiffness and speed, all kernels in `xp`.
+
+    The stacked kernels end to end on one array library (:func:`railvib.stack.namespace`:
+    NumPy, CuPy or JAX): the Euler rail's waves and receptance
+    (:mod:`railvib.track.stacked`), the vehicle condensation and the coupled solve.
+    Nothing but the pivot and band-edge fallbacks leaves the device. The cases are
+    taken in blocks of about `block` (case, frequency) points.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track (an Euler rail: no shear stiffness), contact stiffness and wheel
+        positions shared by the cases; its pad and speed are not used.
+    f : array_like
+        Frequencies in Hz, ``(n_freq,)``.
+    pad_stiffness : array
+        ``K*`` of each case's pad in N/m, ``(n_case, n_freq)``, in `xp`.
+    speeds : array_like
+        Vehicle speed of each case, m/s, ``(n_case,)``.
+    xp : module
+        Array namespace.
+    block : int, optional
+        Points per block (default :data:`railvib.coupling.FREQUENCY_BLOCK`, sized to a
+        CPU's cache; an accelerator wants millions).
+
+    Returns
+    -------
+    vehicle, rail, contact_force : array
+        ``(n_case, n_freq, n_dof)`` (m/m), ``(n_case, n_freq, n_wheel)`` (m/m) and
+        ``(n_case, n_freq, n_wheel)`` (N/m), per metre of irregularity, in `xp`.
+    """
+    f_np = np.atleast_1d(np.asarray(f, dtype=float))
+    speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+    cond = system.vehicle.condensed_to_wheels(f_np, xp)
+    per_block = max(1, (FREQUENCY_BLOCK if block is None else int(block)) // f_np.size)
+    parts = [
+        _frf_block(
+            system, f_np, pad_stiffness[c : c + per_block], speeds[c : c + per_block], cond, xp
+        )
+        for c in range(0, speeds.size, per_block)
+    ]
+    out = tuple(xp.concatenate([p[i] for p in parts], axis=0) for i in range(3))
+    return out[0], out[1], out[2]
+
+
+def _frf_block(
+    system: CoupledSystem,
+    f_np: NDArray[np.float64],
+    pad_stiffness: Any,
+    speeds: NDArray[np.float64],
+    cond: WheelCondensation,
+    xp: Any,
+) -> tuple[Any, Any, Any]:
+    """:func:`frf_stack` of one block of cases."""
+    track = system.track
+    if track.rail.is_timoshenko:
+        raise CaseError("track.rail.shear_stiffness", track.rail.shear_stiffness, "an Euler rail")
+    n_case = speeds.size
+    d = track.sleeper_spacing
+    ei = track.rail.complex_bending_stiffness
+    omega = 2.0 * np.pi * xp.asarray(f_np)
+    beta4 = track.rail.mass_per_length * omega**2 * d**4 / ei + 0.0 * pad_stiffness
+    waves = stacked_waves(
+        xp.reshape(beta4, (-1,)), xp.reshape(pad_stiffness * (d**3 / ei), (-1,)), xp
+    )
+    x = system.wheel_positions / d
+    rec = receptance_entries(waves, x, x, xp)
+    scale = d**3 / ei
+    rec = [[xp.reshape(e * scale, (n_case, f_np.size)) for e in row] for row in rec]
+    vehicle = system.vehicle
+    delays = xp.asarray(vehicle.wheel_offsets[None, :] / speeds[:, None])
+    excitation = xp.exp(-2j * np.pi * xp.asarray(f_np)[None, :, None] * delays[:, None, :])
+    return _coupled_entries(cond, rec, system.contact_stiffness, excitation, xp)
