@@ -171,6 +171,12 @@ def solve(a: list[list[Any]], b: list[Any], xp: Any = np) -> tuple[list[Any], An
     bad : array of bool
         ``(N,)``: points whose pivots failed the test (their `x` is not to be used).
     """
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return _solve(a, b, xp)
+
+
+def _solve(a: list[list[Any]], b: list[Any], xp: Any) -> tuple[list[Any], Any]:
+    """:func:`solve` (a zero pivot gives inf/nan at its points, which are flagged)."""
     n = len(b)
     a = [list(row) for row in a]
     b = list(b)

@@ -108,6 +108,11 @@ def stacked_waves(beta4: Any, pad: Any, xp: Any = np) -> StackedWaves:
     -------
     StackedWaves
     """
+    with np.errstate(all="ignore"):  # the branches xp.where discards may overflow
+        return _waves(beta4, pad, xp)
+
+
+def _waves(beta4: Any, pad: Any, xp: Any) -> StackedWaves:
     basis = krylov(beta4, 0.5, xp)
     half = [
         [basis[c - r] if c >= r else beta4 * basis[c - r + 4] for c in range(4)] for r in range(4)

@@ -206,7 +206,8 @@ class Vehicle:
             for j in nb:
                 weak = size < PIVOT_THRESHOLD * xp.abs(d[_key(p, j)])
                 bad = weak if bad is None else (bad | weak)
-            inv = 1.0 / pivot
+            with np.errstate(divide="ignore", invalid="ignore"):  # flagged above
+                inv = 1.0 / pivot
             ell = {j: d[_key(p, j)] * inv for j in nb}
             for ia, a in enumerate(nb):
                 for b in nb[ia:]:
