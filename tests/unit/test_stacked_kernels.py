@@ -32,7 +32,8 @@ def test_solve_equals_lapack_and_flags_the_points_that_need_pivoting():
     a[7, 0, 0] = 0.0  # elimination without row exchanges cannot use this pivot
     b = rng.normal(size=(50, 4, 3)) + 0j
     x, bad = solve(entries(a), [b[:, i, :] for i in range(4)])  # 3 right-hand sides
-    assert bad[7] and bad.sum() <= 5
+    assert bad[7]
+    assert bad.sum() <= 5
     ok = ~bad
     # reason: well-conditioned 4x4 systems (diagonal shifted by 4): a few ulp times a
     # condition number of order 10
