@@ -46,7 +46,7 @@ __all__ = [
     "PadPredictJob",
     "PadPredictReport",
     "fit_pad_to_folder",
-    "loop_temperatures",
+    "prediction_loops",
     "predict_pad_to_folder",
     "write_example_data",
 ]
@@ -389,10 +389,14 @@ class PadPredictReport:
     files: tuple[Path, ...]
 
 
-def loop_temperatures(
+def prediction_loops(
     prediction: PadPrediction, wanted_c: tuple[float, ...] = (-30.0, 20.0)
-) -> list[float]:
-    """The test temperatures (degC) nearest to `wanted_c` (the paper's Fig. 6: -30, +20 degC).
+) -> list[tuple[float, str, Any, Any]]:
+    """Fig. 6-style loops at the test temperatures nearest to `wanted_c` (degC).
+
+    The paper's Fig. 6 shows -30 and +20 degC; each loop is the ellipse of
+    :func:`railvib.pads.hysteresis_loop` from the measured ``K'`` and ``K''`` (derived,
+    not a measured curve), under the paper's 20-70 kN load.
 
     Parameters
     ----------
@@ -403,21 +407,20 @@ def loop_temperatures(
 
     Returns
     -------
-    list of float
-        Distinct measured temperatures, degC, warmest first.
+    list of (float, str, numpy.ndarray, numpy.ndarray)
+        ``(temperature degC, label, displacement m, force N)`` per distinct measured
+        temperature, warmest first; the label names the temperature, ``K'`` (kN/mm) and
+        the loss factor.
     """
-    t = prediction.sweep.temperature_c
-    return sorted({float(t[np.argmin(np.abs(t - w))]) for w in wanted_c}, reverse=True)
-
-
-def _loops(prediction: PadPrediction) -> list[tuple[str, Any, Any]]:
     s = prediction.sweep
+    t = s.temperature_c
     out = []
-    for t in loop_temperatures(prediction):
-        i = int(np.flatnonzero(s.temperature_c == t)[0])
-        x, force = hysteresis_loop(float(s.storage_n_per_m[i]), float(s.loss_n_per_m[i]))
-        k = s.storage_n_per_m[i] / 1e6
-        out.append((f"{t:g} °C (K' = {k:.1f} kN/mm)", x, force))
+    for temp in sorted({float(t[np.argmin(np.abs(t - w))]) for w in wanted_c}, reverse=True):
+        i = int(np.flatnonzero(t == temp)[0])
+        k, loss = float(s.storage_n_per_m[i]), float(s.loss_n_per_m[i])
+        x, force = hysteresis_loop(k, loss)
+        label = f"{temp:+g} °C: K' = {k / 1e6:.1f} kN/mm, η = {loss / k:.3f}"
+        out.append((temp, label, x, force))
     return out
 
 
@@ -434,7 +437,7 @@ def _prediction_plots(
     )
     files = [save_figure(ax_k, outdir / "fig07_temperature_sweep.png")]
     _, ax = new_figure(figsize=(6, 4.5))
-    plot_hysteresis_loops(_loops(prediction), ax=ax)
+    plot_hysteresis_loops([loop[1:] for loop in prediction_loops(prediction)], ax=ax)
     ax.set_title(
         f"{name}: loops at {f_test:g} Hz, 20-70 kN, derived from K' and K''\n"
         "(linear viscoelastic ellipses; cf. the paper's Fig. 6)",

@@ -10,6 +10,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.ticker import FuncFormatter
 from numpy.typing import ArrayLike
 
 from railvib.pads.fit import MasterCurve
@@ -170,6 +171,10 @@ def plot_temperature_sweep(
     f = float(sweep.frequency_hz[0])
     ax_k.plot(t, sweep.storage_n_per_m / _KN_PER_MM, "o-", ms=4, color="tab:blue")
     ax_k.set_yscale("log")
+    plain = FuncFormatter(lambda v, _pos: f"{v:g}")
+    ax_k.yaxis.set_major_formatter(plain)
+    ax_k.yaxis.set_minor_formatter(plain)
+    ax_k.tick_params(axis="y", which="minor", labelsize="x-small")
     ax_k.set_ylabel(f"storage stiffness K' at {f:g} Hz [kN/mm]")
     ax_e.plot(t, sweep.loss_n_per_m / sweep.storage_n_per_m, "o-", ms=4, color="tab:red")
     ax_e.set_ylabel(f"loss factor η at {f:g} Hz [-]")
@@ -195,6 +200,7 @@ def plot_temperature_sweep(
 def plot_hysteresis_loops(
     loops: Sequence[tuple[str, ArrayLike, ArrayLike]],
     *,
+    colors: Sequence[str] | None = None,
     ax: Axes | None = None,
 ) -> Axes:
     """Force-displacement loops (the seed's Fig. 6), displacement in mm and force in kN.
@@ -204,6 +210,8 @@ def plot_hysteresis_loops(
     loops : sequence of (str, array_like, array_like)
         ``(label, displacement m, force N)`` of each loop (e.g.
         :func:`railvib.pads.hysteresis_loop`).
+    colors : sequence of str, optional
+        A matplotlib colour per loop (default: the colour cycle).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on.
 
@@ -215,8 +223,9 @@ def plot_hysteresis_loops(
         import matplotlib.pyplot as plt
 
         _, ax = plt.subplots(figsize=(6, 4.5))
-    for label, x, force in loops:
-        ax.plot(np.asarray(x) * 1e3, np.asarray(force) / 1e3, label=label)
+    for i, (label, x, force) in enumerate(loops):
+        color = None if colors is None else colors[i]
+        ax.plot(np.asarray(x) * 1e3, np.asarray(force) / 1e3, label=label, color=color)
     ax.set_xlabel("displacement about the mean [mm]")
     ax.set_ylabel("load [kN]")
     ax.grid(True, alpha=0.3)
