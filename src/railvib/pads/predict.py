@@ -60,6 +60,9 @@ LOSS_PEAK_HALF_WIDTH_C = 7.5
 #: the paper's test load on a pad, cycling between 20 and 70 kN (section 3.2.2), N
 PAPER_LOAD_RANGE_N = (20.0e3, 70.0e3)
 
+#: refits of the loss-peak parabola about its own vertex when that lies outside the window
+_PEAK_ITERATIONS = 4
+
 _TG_HINT = "give Tg (glass_transition_c, --tg)"
 
 
@@ -72,8 +75,10 @@ def loss_factor_peak(
 
     A least-squares parabola ``eta(T)`` through the points within `half_width_c` of the
     largest measured loss factor (at least that point and its two neighbours); its vertex
-    is the peak. The parabola averages the measurement noise over the points of the
-    peak's top; on a symmetric peak sampled symmetrically it returns the centre exactly.
+    is the peak. Where noise has moved the largest point so far that the vertex lies
+    outside the window, the parabola is refitted about the vertex (a few times at most).
+    The parabola averages the measurement noise over the points of the peak's top; on a
+    symmetric peak sampled symmetrically it returns the centre exactly.
 
     Parameters
     ----------
@@ -117,19 +122,25 @@ def loss_factor_peak(
             f"a loss-factor peak inside the measured range {t[0]:g} to {t[-1]:g} degC; the "
             f"largest is at the {end} temperature, so Tg cannot be found ({_TG_HINT})",
         )
-    near = np.abs(t - t[i]) <= half_width_c * (1 + 1e-12)
-    near[i - 1 : i + 2] = True
-    x = t[near] - t[i]
-    a, b, _ = np.polyfit(x, eta[near], 2)
-    vertex = -b / (2 * a) if a < 0 else np.nan
-    if not (np.isfinite(vertex) and x.min() <= vertex <= x.max()):
-        raise CaseError(
-            "data.loss_factor",
-            f"largest {eta[i]:.4g} at {t[i]:g} degC",
-            f"a loss-factor peak (a maximum of a parabola over {t[i] + x.min():g} to "
-            f"{t[i] + x.max():g} degC); Tg cannot be found ({_TG_HINT})",
-        )
-    return float(t[i] + vertex)
+    centre = float(t[i])
+    for _ in range(_PEAK_ITERATIONS):
+        near = np.abs(t - centre) <= half_width_c * (1 + 1e-12)
+        j = int(np.argmin(np.abs(t - centre)))
+        near[max(j - 1, 0) : j + 2] = True
+        x = t[near] - centre
+        a, b, _ = np.polyfit(x, eta[near], 2)
+        vertex = centre - b / (2 * a) if a < 0 else np.nan
+        if not np.isfinite(vertex) or not t[0] < vertex < t[-1]:
+            break
+        if x.min() <= vertex - centre <= x.max():
+            return float(vertex)
+        centre = float(vertex)  # noise moved the largest point: fit about the vertex
+    raise CaseError(
+        "data.loss_factor",
+        f"largest {eta[i]:.4g} at {t[i]:g} degC",
+        f"a loss-factor peak (a maximum of a parabola over +/-{half_width_c:g} degC about "
+        f"it); none found inside {t[0]:g} to {t[-1]:g} degC, so Tg cannot be found ({_TG_HINT})",
+    )
 
 
 def hysteresis_loop(
