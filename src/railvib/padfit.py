@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import tomli_w
@@ -24,7 +23,6 @@ from railvib.pads import (
     fit_log_linear,
     fit_pad,
     fittable_models,
-    hysteresis_loop,
     pad_toml,
     predict_pad,
     read_measurements_csv,
@@ -46,7 +44,6 @@ __all__ = [
     "PadPredictJob",
     "PadPredictReport",
     "fit_pad_to_folder",
-    "prediction_loops",
     "predict_pad_to_folder",
     "write_example_data",
 ]
@@ -389,41 +386,6 @@ class PadPredictReport:
     files: tuple[Path, ...]
 
 
-def prediction_loops(
-    prediction: PadPrediction, wanted_c: tuple[float, ...] = (-30.0, 20.0)
-) -> list[tuple[float, str, Any, Any]]:
-    """Fig. 6-style loops at the test temperatures nearest to `wanted_c` (degC).
-
-    The paper's Fig. 6 shows -30 and +20 degC; each loop is the ellipse of
-    :func:`railvib.pads.hysteresis_loop` from the measured ``K'`` and ``K''`` (derived,
-    not a measured curve), under the paper's 20-70 kN load.
-
-    Parameters
-    ----------
-    prediction : PadPrediction
-        Its sweep's temperatures are searched.
-    wanted_c : tuple of float
-        Temperatures wanted, degC.
-
-    Returns
-    -------
-    list of (float, str, numpy.ndarray, numpy.ndarray)
-        ``(temperature degC, label, displacement m, force N)`` per distinct measured
-        temperature, warmest first; the label names the temperature, ``K'`` (kN/mm) and
-        the loss factor.
-    """
-    s = prediction.sweep
-    t = s.temperature_c
-    out = []
-    for temp in sorted({float(t[np.argmin(np.abs(t - w))]) for w in wanted_c}, reverse=True):
-        i = int(np.flatnonzero(t == temp)[0])
-        k, loss = float(s.storage_n_per_m[i]), float(s.loss_n_per_m[i])
-        x, force = hysteresis_loop(k, loss)
-        label = f"{temp:+g} °C: K' = {k / 1e6:.1f} kN/mm, η = {loss / k:.3f}"
-        out.append((temp, label, x, force))
-    return out
-
-
 def _prediction_plots(
     prediction: PadPrediction, fit: LogLinearFit, job: PadPredictJob, name: str, outdir: Path
 ) -> list[Path]:
@@ -437,7 +399,7 @@ def _prediction_plots(
     )
     files = [save_figure(ax_k, outdir / "fig07_temperature_sweep.png")]
     _, ax = new_figure(figsize=(6, 4.5))
-    plot_hysteresis_loops([loop[1:] for loop in prediction_loops(prediction)], ax=ax)
+    plot_hysteresis_loops([loop[1:] for loop in prediction.hysteresis_loops()], ax=ax)
     ax.set_title(
         f"{name}: loops at {f_test:g} Hz, 20-70 kN, derived from K' and K''\n"
         "(linear viscoelastic ellipses; cf. the paper's Fig. 6)",

@@ -321,6 +321,38 @@ class PadPrediction:
         fr = self.master.reduced_frequency_hz
         return float(fr.min() / a_t), float(fr.max() / a_t)
 
+    def hysteresis_loops(
+        self, wanted_c: tuple[float, ...] = (-30.0, 20.0)
+    ) -> list[tuple[float, str, NDArray[np.float64], NDArray[np.float64]]]:
+        """Fig. 6-style loops at the test temperatures nearest to `wanted_c` (degC).
+
+        The paper's Fig. 6 shows -30 and +20 degC; each loop is the ellipse of
+        :func:`hysteresis_loop` from the measured ``K'`` and ``K''`` under the paper's
+        20-70 kN load (derived, not a measured curve).
+
+        Parameters
+        ----------
+        wanted_c : tuple of float
+            Temperatures wanted, degC.
+
+        Returns
+        -------
+        list of (float, str, numpy.ndarray, numpy.ndarray)
+            ``(temperature degC, label, displacement m, force N)`` per distinct measured
+            temperature, warmest first; the label names the temperature, ``K'`` (kN/mm)
+            and the loss factor.
+        """
+        s = self.sweep
+        t = s.temperature_c
+        out = []
+        for temp in sorted({float(t[np.argmin(np.abs(t - w))]) for w in wanted_c}, reverse=True):
+            i = int(np.flatnonzero(t == temp)[0])
+            k, loss = float(s.storage_n_per_m[i]), float(s.loss_n_per_m[i])
+            x, force = hysteresis_loop(k, loss)
+            label = f"{temp:+g} °C: K' = {k / 1e6:.1f} kN/mm, η = {loss / k:.3f}"
+            out.append((temp, label, x, force))
+        return out
+
     def pad_table(self) -> dict[str, Any]:
         """The ``[track.pad]`` table of :attr:`pad` (tabulated master curve and ``tts``).
 

@@ -17,7 +17,6 @@ from matplotlib.ticker import FuncFormatter
 
 from railvib.case import Case, build_pad
 from railvib.io import new_figure, save_figure
-from railvib.padfit import prediction_loops
 from railvib.pads import (
     PadPrediction,
     fit_log_linear,
@@ -90,7 +89,7 @@ def save_fig6_loops(prediction: PadPrediction, outdir: str | Path) -> Path:
     pathlib.Path
         The file written.
     """
-    loops = prediction_loops(prediction)
+    loops = prediction.hysteresis_loops()
     fig, ax = new_figure(figsize=(6.5, 4.6))
     plot_hysteresis_loops(
         [loop[1:] for loop in loops], colors=[_color_at(loop[0]) for loop in loops], ax=ax

@@ -281,3 +281,14 @@ def test_hysteresis_loop_is_the_viscoelastic_ellipse():
     # relative error is about (2 pi / n)^2 / 6 = 4e-7)
     area = 0.5 * abs(np.dot(x[:-1], force[1:]) - np.dot(x[1:], force[:-1]))
     assert area == pytest.approx(np.pi * k2 * amplitude**2, rel=1e-5)
+
+
+def test_fig6_loops_at_the_papers_temperatures(wj7):
+    # the paper's Fig. 6: -30 and +20 degC, both measured in the 2.5 degC protocol
+    loops = predict_pad(wj7).hysteresis_loops()
+    assert [t for t, *_ in loops] == [20.0, -30.0]
+    i = int(np.flatnonzero(wj7.temperature_c == -30.0)[0])
+    _, label, x, _ = loops[1]
+    assert f"{wj7.storage_n_per_m[i] / 1e6:.1f} kN/mm" in label
+    # the stiffer, colder pad moves less under the same 25 kN amplitude
+    assert np.ptp(x) < np.ptp(loops[0][2])
