@@ -1,18 +1,15 @@
-"""The paper's figures redrawn from our results: Figs. 9-16 (PSDs) and Fig. 8 (pad stiffness)."""
+"""The paper's figures redrawn from our results: Figs. 9-16 (PSDs); Figs. 6-8 in pad_figures."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
 
-import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from railvib.case import Case, build_pad
 from railvib.io import new_figure, save_figure
-from railvib.plot.pads import plot_stiffness_vs_frequency
 from railvib.plot.psd import plot_psd
 from railvib.reproduce.metrics import peak, peak_frequency
 from railvib.reproduce.study import (
@@ -22,7 +19,7 @@ from railvib.reproduce.study import (
     StudyCase,
 )
 
-__all__ = ["draw_figure", "save_pad_figure", "save_paper_figure"]
+__all__ = ["draw_figure", "save_paper_figure"]
 
 _CASES: Mapping[str, StudyCase] = {c.key: c for c in CASES}
 _PANEL_LETTERS = "abcdef"
@@ -119,41 +116,3 @@ def save_paper_figure(
         The file written.
     """
     return save_figure(draw_figure(spec, results), Path(outdir) / f"{spec.stem}.png", tight=False)
-
-
-#: the cases whose pads the paper's Fig. 8 shows (K(f) at -30, -10 and +20 degC)
-FIG8_CASES = ("m30", "m10", "p20")
-
-
-def save_pad_figure(cases: Mapping[str, Case], outdir: str | Path) -> Path:
-    """The paper's Fig. 8: the railpad storage stiffness of the temperature cases, 1-1000 Hz.
-
-    Drawn from the pad models of the study's cases (the paper's log-linear law with
-    kappa = 0.07 held below f0), on log-log axes with the paper's 100 Hz marked.
-
-    Parameters
-    ----------
-    cases : mapping of str to Case
-        Validated study cases by key (see :func:`railvib.reproduce.cases.load_study_cases`);
-        the keys of :data:`FIG8_CASES` must be present.
-    outdir : str or pathlib.Path
-        Folder for ``fig08_pad_stiffness.png``.
-
-    Returns
-    -------
-    pathlib.Path
-        The file written.
-    """
-    f = np.geomspace(1.0, 1000.0, 200)
-    curves = {
-        float(cases[key].track.pad_temperature_c or 0.0): build_pad(cases[key]).stiffness(f)
-        for key in FIG8_CASES
-    }
-    fig, ax = new_figure(figsize=(6.5, 4.2))
-    plot_stiffness_vs_frequency(f, curves, ax=ax)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.axvline(100.0, ls=":", color="0.5", label="paper's Fig. 8 ends at 100 Hz")
-    ax.legend(fontsize="small")
-    ax.set_title("Fig. 8: WJ-7 railpad stiffness, K0 (f/f0)^0.07 (f0 = 5 Hz)")
-    return save_figure(fig, Path(outdir) / "fig08_pad_stiffness.png")

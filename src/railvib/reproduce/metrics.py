@@ -17,6 +17,7 @@ from scipy.ndimage import uniform_filter1d
 from scipy.signal import find_peaks
 
 from railvib.docstrings import fill_doc
+from railvib.pads import LogLinearFit, TabulatedPad, fit_log_linear
 from railvib.results.stats import band_rms, dominant_frequency
 from railvib.results.stats import peak as _peak
 
@@ -30,6 +31,8 @@ __all__ = [
     "frequency_shift",
     "headline_ratio",
     "headline_shift",
+    "pad_k0",
+    "pad_slope",
     "peak",
     "peak_difference",
     "peak_frequency",
@@ -391,6 +394,59 @@ def headline_shift(results: Results, reference: str, cases: Sequence[str], respo
     )
 
 
+def _pad_law(results: Results, case: str, band: Band, f0_hz: float) -> LogLinearFit:
+    """The log-linear law fitted to the pad K' that drove `case`'s run, over `band`."""
+    ds = results[case]
+    k = np.asarray(ds["pad_stiffness"].values)
+    f = ds["frequency"].values
+    pad = TabulatedPad(tuple(f), tuple(k.real), tuple(k.imag))
+    return fit_log_linear(pad, float("nan"), band, f0_hz=f0_hz)
+
+
+@fill_doc(_SHARED)
+def pad_k0(results: Results, case: str, band: Band, f0_hz: float = 5.0) -> float:
+    """K0 of the paper's law ``K' = K0 (f/f0)^kappa`` fitted to the case's pad, kN/mm.
+
+    The law is fitted (:func:`railvib.pads.fit_log_linear`, least squares in log-log at
+    61 log-spaced frequencies over `band`) to the storage stiffness of the dataset's
+    ``pad_stiffness``: the pad that drove the run, at the case's pad temperature.
+
+    Parameters
+    ----------
+    {results}
+    {case}
+    {band}
+    f0_hz : float
+        Reference frequency f0 of the law, Hz.
+
+    Returns
+    -------
+    float
+        K0 in kN/mm.
+    """
+    return _pad_law(results, case, band, f0_hz).model.k0_n_per_m / 1e6
+
+
+@fill_doc(_SHARED)
+def pad_slope(results: Results, case: str, band: Band, f0_hz: float = 5.0) -> float:
+    """Log-log slope kappa of the case's pad K' over `band` (see :func:`pad_k0`).
+
+    Parameters
+    ----------
+    {results}
+    {case}
+    {band}
+    f0_hz : float
+        Reference frequency f0 of the law, Hz.
+
+    Returns
+    -------
+    float
+        kappa, dimensionless.
+    """
+    return _pad_law(results, case, band, f0_hz).model.exponent
+
+
 def _whole(ds: xr.Dataset) -> Band:
     f = ds["frequency"].values
     return float(f[0]), float(f[-1])
@@ -410,4 +466,6 @@ METRICS: Mapping[str, Callable[..., float]] = {
     "envelope_peak_frequency": envelope_peak_frequency,
     "headline_ratio": headline_ratio,
     "headline_shift": headline_shift,
+    "pad_k0": pad_k0,
+    "pad_slope": pad_slope,
 }

@@ -13,7 +13,8 @@ import xarray as xr
 
 from railvib.io import railvib_version, write_text
 from railvib.reproduce.cases import load_study_cases, run_cases
-from railvib.reproduce.figures import save_pad_figure, save_paper_figure
+from railvib.reproduce.figures import save_paper_figure
+from railvib.reproduce.pad_figures import save_pad_figures, study_prediction
 from railvib.reproduce.report import write_report
 from railvib.reproduce.study import CASES, FIGURES
 from railvib.reproduce.table import compare, write_table
@@ -50,7 +51,7 @@ class ReproduceResult:
 
 
 def n_steps() -> int:
-    """Number of progress steps :func:`reproduce` reports (cases, figures, Fig. 8, 3 writes)."""
+    """Number of progress steps :func:`reproduce` reports (cases, figures, pad figures, writes)."""
     return len(CASES) + len(FIGURES) + 4
 
 
@@ -81,8 +82,8 @@ def reproduce(
     for c in CASES:
         files.append(write_text(outdir / "cases" / f"{c.preset}.toml", cases[c.key].to_toml()))
     tick("wrote the resolved case files")
-    figures = [(8, save_pad_figure(cases, outdir))]
-    tick("drew Fig. 8")
+    figures = save_pad_figures(cases, study_prediction(), outdir)
+    tick("drew Figs. 6-8 (the pad predicted from the 0.3 Hz sweep)")
     for spec in FIGURES:
         figures.append((spec.number, save_paper_figure(spec, results, outdir)))
         tick(f"drew Fig. {spec.number}")

@@ -236,7 +236,7 @@ class Study:
     comparisons : tuple of Comparison
         The sets of cases the paper overlays.
     figures : tuple of FigureSpec
-        The paper's figures, in file order.
+        The paper's figures, in file order (a number repeats for another comparison).
     numbers : tuple of PaperNumber
         Every number the paper states, in file order.
     components : mapping of str to str
@@ -573,7 +573,8 @@ def _study(r: _Reader, data: dict[str, Any]) -> Study:
         _figure(r, f, t, by_key, responses)
         for f, t in r.tables(data["figure"], "figure", _FIGURE_REQUIRED, _FIGURE_OPTIONAL)
     )
-    r.unique([str(g.number) for g in figures], "figure", "number")
+    # a figure may be redrawn for another comparison (Figs. 13-16 on the predicted pads)
+    r.unique([f"{g.number} ({g.comparison})" for g in figures], "figure", "number")
     numbers = tuple(
         _number(r, f, t, case_keys, responses, notes)
         for f, t in r.tables(data["number"], "number", _NUMBER_REQUIRED, _NUMBER_OPTIONAL)
@@ -637,7 +638,7 @@ _STUDY = load_study()
 CASES: tuple[StudyCase, ...] = _STUDY.cases
 #: the sets of cases the paper overlays (sections 3.3 and 3.4)
 COMPARISONS: tuple[Comparison, ...] = _STUDY.comparisons
-#: the paper's Figs. 9-16
+#: the paper's Figs. 9-16, then Figs. 13-16 on the predicted pads
 FIGURES: tuple[FigureSpec, ...] = _STUDY.figures
 #: every number the paper states, with how we read it
 PAPER_NUMBERS: tuple[PaperNumber, ...] = _STUDY.numbers
