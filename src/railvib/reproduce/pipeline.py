@@ -13,7 +13,7 @@ import xarray as xr
 
 from railvib.io import railvib_version, write_text
 from railvib.reproduce.cases import load_study_cases, run_cases
-from railvib.reproduce.figures import save_pad_figure, save_paper_figure
+from railvib.reproduce.figures import irregularity_steps, save_pad_figure, save_paper_figure
 from railvib.reproduce.report import write_report
 from railvib.reproduce.study import CASES, FIGURES
 from railvib.reproduce.table import compare, write_table
@@ -83,8 +83,9 @@ def reproduce(
     tick("wrote the resolved case files")
     figures = [(8, save_pad_figure(cases, outdir))]
     tick("drew Fig. 8")
+    steps = irregularity_steps(cases)
     for spec in FIGURES:
-        figures.append((spec.number, save_paper_figure(spec, results, outdir)))
+        figures.append((spec.number, save_paper_figure(spec, results, outdir, steps)))
         tick(f"drew Fig. {spec.number}")
     files += [p for _, p in figures]
     table = compare(results)
