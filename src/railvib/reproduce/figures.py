@@ -40,6 +40,7 @@ __all__ = [
     "draw_figure",
     "draw_pad_figure",
     "irregularity_steps",
+    "legend_entries",
     "save_pad_figure",
     "save_paper_figure",
 ]
@@ -206,10 +207,27 @@ def _draw_zoom(
         )
 
 
-def _legend_handles(
+def legend_entries(
     spec: FigureSpec, steps: Sequence[SpectrumStep], panels: Sequence[tuple[float, float]]
 ) -> tuple[list[Any], list[str]]:
-    """The handles of a figure's one legend: cases, then the markers and lines drawn."""
+    """The handles and labels of a figure's one legend (below its panels).
+
+    Parameters
+    ----------
+    spec : FigureSpec
+        The figure.
+    steps : sequence of SpectrumStep
+        The spectrum jumps marked.
+    panels : sequence of (float, float)
+        The frequency range of each panel, Hz.
+
+    Returns
+    -------
+    (list, list of str)
+        A line per case in its colour; then, where drawn, our peaks and the paper's
+        points, each as a tuple of markers in the colours of their cases; the paper's
+        stated frequencies; the spectrum join.
+    """
     cases = _comparison_cases(spec)
     handles: list[Any] = [Line2D([], [], color=c.color, lw=1.5) for c in cases]
     labels = [c.label for c in cases]
@@ -281,7 +299,7 @@ def draw_figure(
     """
     panels = list(spec.panels) + ([spec.zoom] if spec.zoom is not None else [])
     n = len(panels)
-    rows = math.ceil(len(_legend_handles(spec, steps, panels)[0]) / 3)
+    rows = math.ceil(len(legend_entries(spec, steps, panels)[0]) / 3)
     fig, axes = new_figure(
         figsize=(max(5.6 * n, 9.0), 4.2 + rows * _LEGEND_ROW_IN),
         nrows=1,
@@ -307,7 +325,7 @@ def draw_figure(
         f"Fig. {spec.number}: {spec.component} ({spec.response})\n{comparison.title}",
         fontsize="medium",
     )
-    bottom = _legend_below(fig, *_legend_handles(spec, steps, panels))
+    bottom = _legend_below(fig, *legend_entries(spec, steps, panels))
     fig.tight_layout(rect=(0.0, bottom, 1.0, 1.0))
     return fig
 

@@ -89,7 +89,7 @@ def _row(number: PaperNumber, results: Results) -> dict[str, object]:
         "reading": number.reading,
         "note": number.note,
         "difference": ours - paper,
-        "difference_unit": "pp" if number.unit == "%" else number.unit,
+        "difference_unit": ("pp" if number.unit == "%" else number.unit) if number.paper else "",
         "agreement": _agreement(rel),
         "causes": " ".join(number.causes),
         "remark": number.remark,
