@@ -84,7 +84,8 @@ def test_every_interactive_figure_renders(page):
     plots = state["plots"]
     assert len(plots) == len(FIGURES) + 1  # Figs. 9-16 and Fig. 8
     for plot in plots:
-        assert plot["width"] > 300 and plot["height"] > 200, plot
+        assert plot["width"] > 300, plot
+        assert plot["height"] > 200, plot
         assert plot["drawn"] >= 1, plot  # at least one curve drawn
 
 
@@ -93,4 +94,5 @@ def test_every_static_figure_is_shown(page):
     images = state["images"]
     assert len(images) == len(FIGURES) + 1
     for alt, complete, width in images:
-        assert complete and width > 0, alt
+        assert complete, alt
+        assert width > 0, alt

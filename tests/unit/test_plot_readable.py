@@ -99,15 +99,18 @@ def test_the_plotly_figure_shows_the_same_data():
     spec, f = _spec()
     json.dumps(spec, allow_nan=False)  # plain JSON, no NaN
     curve, circle, crosses = spec["data"]
-    assert curve["x0"] == 1.0 and curve["dx"] == 0.5
+    assert curve["x0"] == 1.0
+    assert curve["dx"] == 0.5
     # DIGITS significant digits: the value written is within half a unit of the last digit
     assert np.allclose(curve["y"], 1.0 / f, rtol=0.5 * 10.0 ** (1 - DIGITS), atol=0.0)
     assert curve["line"]["color"] == "#1f77b4"  # tab:blue
     assert curve["mode"] == "lines"
-    assert circle["mode"] == "markers" and circle["marker"]["symbol"] == "circle-open"
+    assert circle["mode"] == "markers"
+    assert circle["marker"]["symbol"] == "circle-open"
     assert crosses["x"] == [3.0, 7.0, 50.0]
     # one legend entry per group (gid): the circle goes with its case's curve
-    assert curve["showlegend"] and not circle["showlegend"]
+    assert curve["showlegend"]
+    assert not circle["showlegend"]
     assert circle["legendgroup"] == curve["legendgroup"] == "A"
     assert not crosses["showlegend"]  # label "_hidden": no entry
 
@@ -115,7 +118,8 @@ def test_the_plotly_figure_shows_the_same_data():
 def test_the_plotly_layout_keeps_scales_limits_lines_and_texts():
     spec, _ = _spec()
     layout = spec["layout"]
-    assert layout["xaxis"]["type"] == "linear" and layout["xaxis"]["range"] == [1.0, 100.0]
+    assert layout["xaxis"]["type"] == "linear"
+    assert layout["xaxis"]["range"] == [1.0, 100.0]
     assert layout["yaxis"]["type"] == "log"
     assert layout["yaxis"]["range"] == pytest.approx([-3.0, math.log10(2.0)], abs=1e-12)
     assert layout["xaxis"]["title"]["text"] == "frequency [Hz]"

@@ -163,7 +163,7 @@ def format_relative(value: float) -> str:
     Parameters
     ----------
     value : float
-        ``100 (ours / paper - 1)``, %.
+        ``100 (ours / paper - 1)``, in % (dimensionless ratio times 100).
 
     Returns
     -------
