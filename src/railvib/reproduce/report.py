@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import Any
 
 import pandas as pd
+from matplotlib.colors import to_hex
 
 from railvib.case import Case
 from railvib.io import atomic_path
@@ -238,7 +239,7 @@ def _cases_html(cases: Mapping[str, Case]) -> str:
     for c in CASES:
         case = cases[c.key]
         pad = ", ".join(f"{k} = {v}" for k, v in case.track.pad.items())
-        swatch = f'<span style="color:{html.escape(c.color)}">&#9632;</span>'
+        swatch = f'<span style="color:{to_hex(c.color)}">&#9632;</span>'
         rows.append(
             f"<tr><td>{swatch} {html.escape(c.key)}</td><td>{html.escape(c.preset)}</td>"
             f"<td>{html.escape(c.label)}</td><td>{case.track.pad_temperature_c}</td>"
