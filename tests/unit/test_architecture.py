@@ -63,6 +63,7 @@ LAZY_LIBRARIES = {
     "scipy.linalg": "the Timoshenko span's matrix exponential only (railvib.track.beam)",
     "scipy.sparse.linalg": "the finite-track reference model only (railvib.validation)",
     "distributed": "a sweep on a Dask cluster only (railvib.sweep.runner)",
+    "plotly": "the plotly.js text inlined in the reproduce report only (railvib.reproduce.report)",
 }
 
 

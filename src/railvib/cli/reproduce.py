@@ -28,6 +28,7 @@ def reproduce(outdir: Path, quiet: bool) -> None:
 
     from railvib.reproduce import n_steps
     from railvib.reproduce import reproduce as run_study
+    from railvib.reproduce.table import summary_line
 
     console = Console(stderr=True)
     with Progress(
@@ -43,12 +44,6 @@ def reproduce(outdir: Path, quiet: bool) -> None:
         out = run_study(outdir, progress=lambda msg: bar.update(task, advance=1, description=msg))
     if quiet:
         return
-    table = out.table
-    claims = table[table["claim_holds"] != ""]
-    held = int((claims["claim_holds"] == "yes").sum())
-    click.echo(
-        f"{len(table)} paper numbers compared; {held}/{len(claims)} qualitative findings hold; "
-        f"{out.seconds:.1f} s"
-    )
+    click.echo(f"{summary_line(out.table)}; {out.seconds:.1f} s")
     click.echo(f"report: {out.outdir / 'report.html'}")
     click.echo(f"table:  {out.outdir / 'paper_comparison.md'}")

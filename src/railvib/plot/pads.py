@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 
 from railvib.pads.fit import MasterCurve
 from railvib.pads.io import Measurements
+from railvib.plot.axes import log_axis
 
 __all__ = [
     "plot_hysteresis_loops",
@@ -75,8 +76,8 @@ def plot_master_curve(
             k = np.asarray(curve_stiffness_n_per_m)
             part = k.real if ax is ax_s else k.imag
             ax.plot(curve_frequency_hz, part / _KN_PER_MM, "k-", lw=1.2, label=curve_label)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
+        log_axis(ax, "x")
+        log_axis(ax, "y")
         ax.set_ylabel(f"{name} [kN/mm]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize="small")
@@ -128,9 +129,9 @@ def plot_stiffness_vs_frequency(
         _, ax = plt.subplots(figsize=(7, 4))
     for temp, k in sorted(stiffness_by_temperature.items()):
         ax.plot(frequency_hz, get(np.asarray(k)), label=f"{temp:g} °C")
-    ax.set_xscale("log")
+    log_axis(ax, "x")
     if quantity != "loss_factor":
-        ax.set_yscale("log")
+        log_axis(ax, "y")
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel(ylabel)
     ax.grid(True, which="both", alpha=0.3)

@@ -24,6 +24,7 @@ from railvib.results.stats import peak as _peak
 __all__ = [
     "METRICS",
     "Results",
+    "comb_peaks",
     "comb_period_hz",
     "comb_spacing",
     "crossover",
@@ -277,6 +278,47 @@ def comb_period_hz(ds: xr.Dataset) -> float:
 
 
 @fill_doc(_SHARED)
+def comb_peaks(
+    results: Results,
+    case: str,
+    response: str,
+    band: Band,
+    prominence_decades: float = 0.1,
+    min_distance_hz: float = 5.0,
+) -> np.ndarray:
+    """Frequencies (Hz) of the comb teeth in `band`: the peaks :func:`comb_spacing` counts.
+
+    Local maxima of ``log10 PSD`` with a prominence of at least `prominence_decades`
+    and at least `min_distance_hz` apart.
+
+    Parameters
+    ----------
+    {results}
+    {case}
+    {response}
+    {band}
+    prominence_decades : float
+        Smallest prominence of a peak of ``log10 PSD``, in decades.
+    min_distance_hz : float
+        Smallest distance between two peaks in Hz.
+
+    Returns
+    -------
+    numpy.ndarray
+        Ascending grid frequencies of the peaks, Hz.
+    """
+    a = psd(results, case, response).sel(frequency=slice(*band))
+    f = a["frequency"].values
+    step = float(f[1] - f[0])
+    idx, _ = find_peaks(
+        np.log10(a.values),
+        prominence=prominence_decades,
+        distance=max(1, round(min_distance_hz / step)),
+    )
+    return np.asarray(f[idx], dtype=float)
+
+
+@fill_doc(_SHARED)
 def comb_spacing(
     results: Results,
     case: str,
@@ -287,8 +329,7 @@ def comb_spacing(
 ) -> float:
     """Mean spacing of the PSD peaks in `band`, Hz.
 
-    Local maxima of ``log10 PSD`` with a prominence of at least `prominence_decades`
-    and at least `min_distance_hz` apart; the spacing is ``(f_last - f_first)/(n - 1)``.
+    The peaks of :func:`comb_peaks`; the spacing is ``(f_last - f_first)/(n - 1)``.
 
     Parameters
     ----------
@@ -306,17 +347,10 @@ def comb_spacing(
     float
         Mean peak spacing in Hz, or NaN if fewer than two peaks are found.
     """
-    a = psd(results, case, response).sel(frequency=slice(*band))
-    f = a["frequency"].values
-    step = float(f[1] - f[0])
-    idx, _ = find_peaks(
-        np.log10(a.values),
-        prominence=prominence_decades,
-        distance=max(1, round(min_distance_hz / step)),
-    )
-    if idx.size < 2:
+    f = comb_peaks(results, case, response, band, prominence_decades, min_distance_hz)
+    if f.size < 2:
         return float("nan")
-    return float((f[idx[-1]] - f[idx[0]]) / (idx.size - 1))
+    return float((f[-1] - f[0]) / (f.size - 1))
 
 
 @fill_doc(_SHARED)

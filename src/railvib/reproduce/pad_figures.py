@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.axes import Axes
-from matplotlib.ticker import FuncFormatter
+from matplotlib.figure import Figure
 
 from railvib.case import Case, build_pad
-from railvib.io import new_figure, save_figure
+from railvib.io import new_figure
 from railvib.pads import (
     PadPrediction,
     fit_log_linear,
@@ -24,7 +24,9 @@ from railvib.pads import (
     read_measurements_csv,
     wj7_example_csv,
 )
+from railvib.plot.axes import log_axis
 from railvib.plot.pads import plot_hysteresis_loops, plot_temperature_sweep
+from railvib.reproduce.figures import LEGEND_GID
 from railvib.reproduce.study import CASES, StudyCase
 
 __all__ = [
@@ -32,10 +34,10 @@ __all__ = [
     "FIG8_PREDICTED",
     "FIG8_STATED",
     "SYNTHETIC_LABEL",
-    "save_fig6_loops",
-    "save_fig7_sweep",
-    "save_fig8_prediction",
-    "save_pad_figures",
+    "draw_fig6_loops",
+    "draw_fig7_sweep",
+    "draw_fig8_prediction",
+    "draw_pad_figures",
     "study_prediction",
 ]
 
@@ -74,20 +76,18 @@ def _color_at(temperature_c: float) -> str:
 _TEMPERATURES_C = {"m30": -30.0, "m10": -10.0, "p20": 20.0}
 
 
-def save_fig6_loops(prediction: PadPrediction, outdir: str | Path) -> Path:
+def draw_fig6_loops(prediction: PadPrediction) -> Figure:
     """Fig. 6: force-displacement loops at the test frequency, -30 and +20 degC (derived).
 
     Parameters
     ----------
     prediction : PadPrediction
         Its sweep gives ``K'`` and ``K''`` at the test temperatures nearest -30, +20 degC.
-    outdir : str or pathlib.Path
-        Folder for ``fig06_pad_loops.png``.
 
     Returns
     -------
-    pathlib.Path
-        The file written.
+    matplotlib.figure.Figure
+        The figure, laid out.
     """
     loops = prediction.hysteresis_loops()
     fig, ax = new_figure(figsize=(6.5, 4.6))
@@ -99,23 +99,22 @@ def save_fig6_loops(prediction: PadPrediction, outdir: str | Path) -> Path:
         f"and K''\n(linear viscoelastic ellipses) of the {SYNTHETIC_LABEL}",
         fontsize="small",
     )
-    return save_figure(fig, Path(outdir) / "fig06_pad_loops.png")
+    fig.tight_layout()
+    return fig
 
 
-def save_fig7_sweep(prediction: PadPrediction, outdir: str | Path) -> Path:
+def draw_fig7_sweep(prediction: PadPrediction) -> Figure:
     """Fig. 7: K' and loss factor against temperature at the test frequency, Tg marked.
 
     Parameters
     ----------
     prediction : PadPrediction
         The sweep and its Tg.
-    outdir : str or pathlib.Path
-        Folder for ``fig07_pad_temperature_sweep.png``.
 
     Returns
     -------
-    pathlib.Path
-        The file written.
+    matplotlib.figure.Figure
+        The figure, laid out.
     """
     fig, (ax_k, ax_e) = new_figure(figsize=(6.5, 5.6), nrows=2, ncols=1, sharex=True)
     plot_temperature_sweep(
@@ -126,7 +125,8 @@ def save_fig7_sweep(prediction: PadPrediction, outdir: str | Path) -> Path:
         "-45 °C for its three pads)",
     )
     ax_k.title.set_fontsize("small")
-    return save_figure(fig, Path(outdir) / "fig07_pad_temperature_sweep.png")
+    fig.tight_layout()
+    return fig
 
 
 def _stated(ax_k: Axes, ax_e: Axes, cases: Mapping[str, Case], f: np.ndarray) -> None:
@@ -134,9 +134,15 @@ def _stated(ax_k: Axes, ax_e: Axes, cases: Mapping[str, Case], f: np.ndarray) ->
         case, study = cases[key], _CASES[key]
         k = build_pad(case).stiffness(f, case.track.pad_temperature_c)
         ax_k.plot(
-            f, k.real / _KN_PER_MM, "--", color=study.color, lw=1.1, label=f"stated: {study.label}"
+            f,
+            k.real / _KN_PER_MM,
+            "--",
+            color=study.color,
+            lw=1.1,
+            label=f"stated: {study.label}",
+            gid=study.label,
         )
-        ax_e.plot(f, k.imag / k.real, "--", color=study.color, lw=1.1)
+        ax_e.plot(f, k.imag / k.real, "--", color=study.color, lw=1.1, gid=study.label)
 
 
 def _predicted(
@@ -151,8 +157,8 @@ def _predicted(
         label = (
             f"{study.label}: K0 = {law.k0_n_per_m / _KN_PER_MM:.1f} kN/mm, κ = {law.exponent:.3f}"
         )
-        ax_k.plot(f, k.real / _KN_PER_MM, color=study.color, lw=1.8, label=label)
-        ax_e.plot(f, k.imag / k.real, color=study.color, lw=1.8)
+        ax_k.plot(f, k.real / _KN_PER_MM, color=study.color, lw=1.8, label=label, gid=study.label)
+        ax_e.plot(f, k.imag / k.real, color=study.color, lw=1.8, gid=study.label)
         a_t, _ = prediction.pad.shift(t)
         nodes = prediction.master.reduced_frequency_hz / a_t
         nodes = nodes[(nodes >= f[0]) & (nodes <= f[-1])]
@@ -162,9 +168,7 @@ def _predicted(
     ax_k.plot([], [], "o", color="0.3", ms=4, mfc="none", label="0.3 Hz test points, shifted")
 
 
-def save_fig8_prediction(
-    cases: Mapping[str, Case], prediction: PadPrediction, outdir: str | Path
-) -> Path:
+def draw_fig8_prediction(cases: Mapping[str, Case], prediction: PadPrediction) -> Figure:
     """Fig. 8 as a prediction: K' and loss factor at -30, -10, +20 degC within 1000 Hz.
 
     Solid: the pads predicted from the 0.3 Hz sweep (the cases of :data:`FIG8_PREDICTED`,
@@ -179,13 +183,11 @@ def save_fig8_prediction(
         Validated study cases by key (all of :data:`FIG8_PREDICTED` and :data:`FIG8_STATED`).
     prediction : PadPrediction
         The prediction the predicted cases' pads come from (for the test points).
-    outdir : str or pathlib.Path
-        Folder for ``fig08_pad_stiffness.png``.
 
     Returns
     -------
-    pathlib.Path
-        The file written.
+    matplotlib.figure.Figure
+        The figure, laid out.
     """
     f = np.geomspace(1.0, 1000.0, 300)
     fig, (ax_k, ax_e) = new_figure(
@@ -193,22 +195,20 @@ def save_fig8_prediction(
     )
     _stated(ax_k, ax_e, cases, f)
     _predicted(ax_k, ax_e, cases, prediction, f)
-    plain = FuncFormatter(lambda v, _pos: f"{v:g}")
     for ax in (ax_k, ax_e):
-        ax.set_xscale("log")
-        ax.set_yscale("log")
+        log_axis(ax, "x")
+        log_axis(ax, "y")
         ax.grid(True, which="both", alpha=0.3)
-        ax.xaxis.set_major_formatter(plain)
-    for axis in (ax_k.yaxis, ax_e.yaxis):
-        axis.set_major_formatter(plain)
-    ax_k.yaxis.set_minor_formatter(plain)
     ax_k.tick_params(axis="y", which="minor", labelsize="x-small")
     ax_k.set_ylabel("storage stiffness K' [kN/mm]")
     ax_e.set_ylabel("loss factor η = K''/K' [-]")
     ax_e.set_xlabel("frequency [Hz]")
     fig.subplots_adjust(left=0.11, right=0.97, top=0.93, bottom=0.2, hspace=0.08)
     handles, labels = ax_k.get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=2, fontsize="x-small", frameon=False)
+    legend = fig.legend(
+        handles, labels, loc="lower center", ncol=2, fontsize="x-small", frameon=False
+    )
+    legend.set_gid(LEGEND_GID)
     lo, hi = FIG8_BAND_HZ
     ax_k.set_title(
         f"Fig. 8: WJ-7 pad predicted from the 0.3 Hz sweep (solid; {SYNTHETIC_LABEL})\n"
@@ -216,13 +216,13 @@ def save_fig8_prediction(
         f"{lo:g}-{hi:g} Hz, f0 = {_F0_HZ:g} Hz",
         fontsize="small",
     )
-    return save_figure(fig, Path(outdir) / "fig08_pad_stiffness.png", tight=False)
+    return fig
 
 
-def save_pad_figures(
-    cases: Mapping[str, Case], prediction: PadPrediction, outdir: str | Path
-) -> list[tuple[int, Path]]:
-    """Figs. 6, 7 and 8 (see the three functions above), with the paper's figure numbers.
+def draw_pad_figures(
+    cases: Mapping[str, Case], prediction: PadPrediction
+) -> list[tuple[int, Figure, str]]:
+    """Figs. 6, 7 and 8 (see the three functions above), with their numbers and file names.
 
     Parameters
     ----------
@@ -230,16 +230,14 @@ def save_pad_figures(
         Validated study cases by key.
     prediction : PadPrediction
         The prediction from the sweep (:func:`study_prediction`).
-    outdir : str or pathlib.Path
-        Folder for the PNG files.
 
     Returns
     -------
-    list of (int, pathlib.Path)
-        ``[(6, ...), (7, ...), (8, ...)]``.
+    list of (int, matplotlib.figure.Figure, str)
+        The paper's figure number, the laid-out figure and its PNG file name.
     """
     return [
-        (6, save_fig6_loops(prediction, outdir)),
-        (7, save_fig7_sweep(prediction, outdir)),
-        (8, save_fig8_prediction(cases, prediction, outdir)),
+        (6, draw_fig6_loops(prediction), "fig06_pad_loops.png"),
+        (7, draw_fig7_sweep(prediction), "fig07_pad_temperature_sweep.png"),
+        (8, draw_fig8_prediction(cases, prediction), "fig08_pad_stiffness.png"),
     ]

@@ -10,16 +10,18 @@ from pathlib import Path
 
 import pandas as pd
 import xarray as xr
+from matplotlib.figure import Figure
 
-from railvib.io import railvib_version, write_text
+from railvib.io import railvib_version, save_figure, write_text
+from railvib.plot.interactive import figure_to_plotly
 from railvib.reproduce.cases import load_study_cases, run_cases
-from railvib.reproduce.figures import save_paper_figure
-from railvib.reproduce.pad_figures import save_pad_figures, study_prediction
-from railvib.reproduce.report import write_report
+from railvib.reproduce.figures import draw_figure, irregularity_steps
+from railvib.reproduce.pad_figures import draw_pad_figures, study_prediction
+from railvib.reproduce.report import ReportFigure, write_report
 from railvib.reproduce.study import CASES, FIGURES
 from railvib.reproduce.table import compare, write_table
 
-__all__ = ["DEFAULT_OUTDIR", "ReproduceResult", "n_steps", "reproduce"]
+__all__ = ["DEFAULT_OUTDIR", "ReproduceResult", "n_steps", "report_figure", "reproduce"]
 
 #: default output folder of ``railvib reproduce``
 DEFAULT_OUTDIR = Path("railvib-reproduce")
@@ -82,12 +84,17 @@ def reproduce(
     for c in CASES:
         files.append(write_text(outdir / "cases" / f"{c.preset}.toml", cases[c.key].to_toml()))
     tick("wrote the resolved case files")
-    figures = save_pad_figures(cases, study_prediction(), outdir)
+    figures = [
+        report_figure(number, fig, outdir / name)
+        for number, fig, name in draw_pad_figures(cases, study_prediction())
+    ]
     tick("drew Figs. 6-8 (the pad predicted from the 0.3 Hz sweep)")
+    steps = irregularity_steps(cases)
     for spec in FIGURES:
-        figures.append((spec.number, save_paper_figure(spec, results, outdir)))
+        fig = draw_figure(spec, results, steps)
+        figures.append(report_figure(spec.number, fig, outdir / f"{spec.stem}.png"))
         tick(f"drew Fig. {spec.number}")
-    files += [p for _, p in figures]
+    files += [f.png for f in figures]
     table = compare(results)
     files += write_table(table, outdir)
     tick("wrote the comparison table")
@@ -101,6 +108,27 @@ def reproduce(
     files.append(write_report(outdir / "report.html", table, figures, cases, meta))
     tick("wrote report.html")
     return ReproduceResult(outdir, results, table, files, time.perf_counter() - start)
+
+
+def report_figure(number: int, fig: Figure, path: Path) -> ReportFigure:
+    """Write a drawn, laid-out `fig` as the PNG `path` and keep its interactive version.
+
+    Parameters
+    ----------
+    number : int
+        The paper's figure number.
+    fig : matplotlib.figure.Figure
+        The figure, laid out (it is not laid out again).
+    path : pathlib.Path
+        The PNG file (through :func:`railvib.io.save_figure`).
+
+    Returns
+    -------
+    ReportFigure
+        The PNG and the Plotly figure of the report.
+    """
+    interactive = figure_to_plotly(fig)
+    return ReportFigure(number, save_figure(fig, path, tight=False), interactive)
 
 
 def _grid_text(ds: xr.Dataset) -> str:

@@ -61,6 +61,23 @@ class Combined(SpatialSpectrum):
         """Wavenumber of the split, ``2 pi / split_wavelength_m``, in rad/m."""
         return 2.0 * np.pi / self.split_wavelength_m
 
+    def steps_rad_per_m(self) -> tuple[float, ...]:
+        """Wavenumbers (rad/m) of the jumps: the hard split, and those of the two members.
+
+        Returns
+        -------
+        tuple of float
+            Ascending, in rad/m: the split wavenumber when ``blend_decades == 0`` (the
+            joined spectrum is discontinuous there), and each member's own steps on the
+            side of the split where that member is used.
+        """
+        om_s = self.split_wavenumber_rad_per_m
+        steps = [om for om in self.long_wave.steps_rad_per_m() if om < om_s]
+        steps += [om for om in self.short_wave.steps_rad_per_m() if om > om_s]
+        if self.blend_decades == 0.0:
+            steps.append(om_s)
+        return tuple(sorted(steps))
+
     def short_wave_weight(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
         """Weight w in [0, 1] of the short-wave spectrum at `wavenumber` (rad/m, > 0)."""
         om = as_wavenumber(wavenumber)
