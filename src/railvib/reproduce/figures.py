@@ -26,7 +26,6 @@ from matplotlib.lines import Line2D
 
 from railvib.case import Case, build_spectrum
 from railvib.io import new_figure, save_figure
-from railvib.plot.axes import log_axis
 from railvib.plot.psd import plot_psd
 from railvib.reproduce.metrics import comb_peaks, comb_spacing, peak, peak_frequency, psd
 from railvib.reproduce.study import CASES, COMPARISONS, FigureSpec, StudyCase

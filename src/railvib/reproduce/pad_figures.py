@@ -9,7 +9,6 @@ and drawn beside the paper's stated log-linear laws, the two "20 degC" pads incl
 from __future__ import annotations
 
 from collections.abc import Mapping
-from pathlib import Path
 
 import numpy as np
 from matplotlib.axes import Axes
