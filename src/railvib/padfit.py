@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from railvib.errors import CaseError, did_you_mean
-from railvib.io import new_figure, save_figure, write_text
+from railvib.io import new_figure, save_figure, staged_folder, write_text
 from railvib.pads import (
     DEFAULT_EXPANSION_COEFFICIENT_PER_K,
     MODEL_ALIASES,
@@ -27,13 +27,23 @@ from railvib.pads import (
 from railvib.pads.tts import wlf_choice
 from railvib.plot.pads import plot_master_curve, plot_stiffness_vs_frequency
 
-__all__ = ["EXAMPLES", "PadFitJob", "PadFitReport", "fit_pad_to_folder", "write_example_data"]
+__all__ = [
+    "EXAMPLES",
+    "PAD_FIT_FILES",
+    "PadFitJob",
+    "PadFitReport",
+    "fit_pad_to_folder",
+    "write_example_data",
+]
 
 #: the shipped example data sets (synthetic WJ-7 pad, ``railvib/data/wj7/README.md``)
 EXAMPLES = {
     "0p3hz": "wj7_synthetic_0p3hz.csv",
     "multifrequency": "wj7_synthetic_multifrequency.csv",
 }
+
+#: every file ``railvib pad fit`` writes to its folder (a later fit replaces them)
+PAD_FIT_FILES = ("pad.toml", "master_curve.png", "stiffness_vs_frequency.png")
 
 #: the job's fields with their command-line options (model and output folder apart)
 _OPTIONS = {
@@ -202,25 +212,44 @@ def fit_pad_to_folder(data: str | Path, outdir: str | Path, job: PadFitJob) -> P
     Returns
     -------
     PadFitReport
+
+    Raises
+    ------
+    railvib.errors.CaseError
+        Bad measurements or options, or `outdir` is not a folder (nothing written).
+    railvib.errors.OutputError
+        `outdir` or one of its files cannot be written (read-only, full disk).
+
+    Notes
+    -----
+    The files are written into a staging folder put in place at the end
+    (:func:`railvib.io.staged_folder`): `outdir` holds one fit's complete set
+    (:data:`PAD_FIT_FILES`; other files are kept), and a fit that fails or is stopped
+    leaves it as it was.
     """
     data, outdir = Path(data), Path(outdir)
-    result = fit_pad(
-        read_measurements_csv(data),
-        job.model,
-        job.reference_temperature_c,
-        job.wlf(),
-        vertical_shift=job.vertical_shift,
-        expansion_coefficient_per_k=job.expansion_coefficient_per_k,
-        n_terms=job.n_terms,
-        f0_hz=job.f0_hz,
-    )
-    band = (float(job.band_hz[0]), float(job.band_hz[1]))
-    fits = tuple(fit_log_linear(result.model, t, band, f0_hz=job.f0_hz) for t in job.temperatures_c)
-    text = "\n".join([result.summary(), *(_log_linear_line(ll, job.f0_hz) for ll in fits)])
-    header = f"{job.command_line(data, outdir)}\n" + text
-    files = [write_text(outdir / "pad.toml", pad_toml(result.model, header=header))]
-    files += _plots(result, job, data.name, outdir)
-    return PadFitReport(result, fits, text, tuple(files))
+    measurements = read_measurements_csv(data)
+    with staged_folder(outdir, PAD_FIT_FILES) as stage:  # an unwritable folder: before fitting
+        result = fit_pad(
+            measurements,
+            job.model,
+            job.reference_temperature_c,
+            job.wlf(),
+            vertical_shift=job.vertical_shift,
+            expansion_coefficient_per_k=job.expansion_coefficient_per_k,
+            n_terms=job.n_terms,
+            f0_hz=job.f0_hz,
+        )
+        band = (float(job.band_hz[0]), float(job.band_hz[1]))
+        fits = tuple(
+            fit_log_linear(result.model, t, band, f0_hz=job.f0_hz) for t in job.temperatures_c
+        )
+        text = "\n".join([result.summary(), *(_log_linear_line(ll, job.f0_hz) for ll in fits)])
+        header = f"{job.command_line(data, outdir)}\n" + text
+        toml = pad_toml(result.model, header=header)
+        files = [write_text(stage.path / "pad.toml", toml)]
+        files += _plots(result, job, data.name, stage.path)
+    return PadFitReport(result, fits, text, tuple(stage.finals(files)))
 
 
 def _log_linear_line(ll: LogLinearFit, f0_hz: float) -> str:

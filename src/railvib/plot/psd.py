@@ -25,7 +25,7 @@ from matplotlib.ticker import LogFormatterSciNotation, NullLocator
 from numpy.typing import ArrayLike
 
 from railvib.io import new_figure, save_figure
-from railvib.labels import rail_label
+from railvib.plot import OVERVIEW_GROUPS
 from railvib.results.units import QUANTITY_UNITS, quantity_unit
 
 __all__ = [
@@ -43,15 +43,6 @@ __all__ = [
     "psd_ylim",
     "save_overview",
 ]
-
-#: (file stem, title, responses) of the response figures written by ``railvib run``
-OVERVIEW_GROUPS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
-    ("psd_carbody", "Car body", ("carbody.bounce",)),
-    ("psd_bogie", "Bogies", ("bogie1.bounce", "bogie2.bounce")),
-    ("psd_wheelset", "Wheelsets", tuple(f"wheelset{i}.bounce" for i in range(1, 5))),
-    ("psd_rail", "Rail under the wheels", tuple(rail_label(i) for i in range(1, 5))),
-    ("psd_pitch", "Pitch", ("carbody.pitch", "bogie1.pitch", "bogie2.pitch")),
-)
 
 #: decades of PSD shown below the peak by :func:`psd_ylim`
 PSD_DECADES = 8.0

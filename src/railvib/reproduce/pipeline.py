@@ -11,14 +11,14 @@ from pathlib import Path
 import pandas as pd
 import xarray as xr
 
-from railvib.io import railvib_version, write_text
+from railvib.io import railvib_version, staged_folder, write_text
 from railvib.reproduce.cases import load_study_cases, run_cases
 from railvib.reproduce.figures import save_pad_figure, save_paper_figure
 from railvib.reproduce.report import write_report
 from railvib.reproduce.study import CASES, FIGURES
 from railvib.reproduce.table import compare, write_table
 
-__all__ = ["DEFAULT_OUTDIR", "ReproduceResult", "n_steps", "reproduce"]
+__all__ = ["DEFAULT_OUTDIR", "ReproduceResult", "n_steps", "reproduce", "reproduce_files"]
 
 #: default output folder of ``railvib reproduce``
 DEFAULT_OUTDIR = Path("railvib-reproduce")
@@ -54,6 +54,25 @@ def n_steps() -> int:
     return len(CASES) + len(FIGURES) + 4
 
 
+def reproduce_files() -> tuple[str, ...]:
+    """Every file :func:`reproduce` writes, relative to its folder (POSIX paths).
+
+    Returns
+    -------
+    tuple of str
+        The resolved case files (``cases/<preset>.toml``), the figures, the comparison
+        table and ``report.html``: the set a later reproduction replaces.
+    """
+    return (
+        *(f"cases/{c.preset}.toml" for c in CASES),
+        "fig08_pad_stiffness.png",
+        *(f"{spec.stem}.png" for spec in FIGURES),
+        "paper_comparison.csv",
+        "paper_comparison.md",
+        "report.html",
+    )
+
+
 def reproduce(
     outdir: str | Path = DEFAULT_OUTDIR,
     progress: Callable[[str], None] | None = None,
@@ -63,43 +82,54 @@ def reproduce(
     Parameters
     ----------
     outdir : str or pathlib.Path
-        Output folder (created if needed). Every file is written atomically.
+        Output folder (created if needed). The files are written into a staging
+        folder put in place at the end (:func:`railvib.io.staged_folder`): `outdir`
+        holds one reproduction's complete set (:func:`reproduce_files`; other files
+        are kept), and one that fails or is stopped leaves it as it was.
     progress : callable, optional
         Called with a short description after each of :func:`n_steps` steps.
 
     Returns
     -------
     ReproduceResult
+
+    Raises
+    ------
+    railvib.errors.CaseError
+        `outdir` is not a folder (before any case runs).
+    railvib.errors.OutputError
+        `outdir` or one of its files cannot be written (read-only, full disk).
     """
     start = time.perf_counter()
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     tick = progress or (lambda _msg: None)
-    cases = load_study_cases()
-    results = run_cases(on_case=lambda c: tick(f"ran {c.preset}"))
-    files: list[Path] = []
-    for c in CASES:
-        files.append(write_text(outdir / "cases" / f"{c.preset}.toml", cases[c.key].to_toml()))
-    tick("wrote the resolved case files")
-    figures = [(8, save_pad_figure(cases, outdir))]
-    tick("drew Fig. 8")
-    for spec in FIGURES:
-        figures.append((spec.number, save_paper_figure(spec, results, outdir)))
-        tick(f"drew Fig. {spec.number}")
-    files += [p for _, p in figures]
-    table = compare(results)
-    files += write_table(table, outdir)
-    tick("wrote the comparison table")
-    meta = {
-        "railvib version": railvib_version(),
-        "written": datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
-        "frequency grid": _grid_text(next(iter(results.values()))),
-        "PSD convention": str(next(iter(results.values())).attrs.get("psd_convention", "")),
-        "compute time": f"{time.perf_counter() - start:.1f} s",
-    }
-    files.append(write_report(outdir / "report.html", table, figures, cases, meta))
-    tick("wrote report.html")
-    return ReproduceResult(outdir, results, table, files, time.perf_counter() - start)
+    with staged_folder(outdir, reproduce_files()) as stage:
+        out = stage.path
+        cases = load_study_cases()
+        results = run_cases(on_case=lambda c: tick(f"ran {c.preset}"))
+        files: list[Path] = []
+        for c in CASES:
+            files.append(write_text(out / "cases" / f"{c.preset}.toml", cases[c.key].to_toml()))
+        tick("wrote the resolved case files")
+        figures = [(8, save_pad_figure(cases, out))]
+        tick("drew Fig. 8")
+        for spec in FIGURES:
+            figures.append((spec.number, save_paper_figure(spec, results, out)))
+            tick(f"drew Fig. {spec.number}")
+        files += [p for _, p in figures]
+        table = compare(results)
+        files += write_table(table, out)
+        tick("wrote the comparison table")
+        meta = {
+            "railvib version": railvib_version(),
+            "written": datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
+            "frequency grid": _grid_text(next(iter(results.values()))),
+            "PSD convention": str(next(iter(results.values())).attrs.get("psd_convention", "")),
+            "compute time": f"{time.perf_counter() - start:.1f} s",
+        }
+        files.append(write_report(out / "report.html", table, figures, cases, meta))
+        tick("wrote report.html")
+    seconds = time.perf_counter() - start
+    return ReproduceResult(Path(outdir), results, table, stage.finals(files), seconds)
 
 
 def _grid_text(ds: xr.Dataset) -> str:
