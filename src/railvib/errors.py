@@ -13,6 +13,8 @@ from typing import Any
 __all__ = [
     "CaseError",
     "LinearModelInvalid",
+    "NonFiniteResult",
+    "OutputError",
     "PlausibilityWarning",
     "RailvibDeprecationWarning",
     "RailvibError",
@@ -35,6 +37,63 @@ class LinearModelInvalid(RailvibError):
     """
 
     exit_code = 3
+
+
+class OutputError(RailvibError, OSError):
+    """A file or folder could not be written: names it and why, on one line.
+
+    Raised for the environment's faults (a full disk, a file-size limit, a read-only
+    or missing folder, a path below a file), never with a partial file left behind
+    (:func:`railvib.io.atomic_path`). It is an :class:`OSError` too, so code that
+    catches those keeps working; the command line prints it as one ``error:`` line
+    and exits with code 2.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file or folder that could not be written, as the user named it.
+    reason : str
+        Why, e.g. ``"No space left on device"``.
+    errno : int, optional
+        The operating system's error number (``errno.ENOSPC``, ...).
+    """
+
+    def __init__(self, path: Any, reason: str, errno: int | None = None) -> None:
+        self.path = str(path)
+        self.reason = reason
+        Exception.__init__(self, f"cannot write {self.path}: {reason}")
+        self.errno = errno
+        self.strerror = reason
+        self.filename = self.path
+
+    def __str__(self) -> str:
+        return f"cannot write {self.path}: {self.reason}"
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.path, self.reason, self.errno))
+
+    def with_path(self, path: Any) -> OutputError:
+        """The same error naming `path` instead (e.g. the final name of a staged file).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The name to show.
+
+        Returns
+        -------
+        OutputError
+        """
+        return type(self)(path, self.reason, self.errno)
+
+
+class NonFiniteResult(RailvibError):
+    """A computed result holds NaN or infinite values; nothing is written.
+
+    The message names the variable, how many frequencies are affected and the first
+    one (Hz); the inputs behind it are beyond what the solver resolves in floating
+    point (the command line exits with code 2).
+    """
 
 
 class CaseError(RailvibError, ValueError):

@@ -11,7 +11,7 @@ import tomli_w
 
 from railvib.case import case_from_dict
 from railvib.errors import CaseError, did_you_mean
-from railvib.io import new_figure, save_figure, write_text
+from railvib.io import new_figure, save_figure, staged_folder, write_text
 from railvib.pads import (
     DEFAULT_EXPANSION_COEFFICIENT_PER_K,
     MODEL_ALIASES,
@@ -39,6 +39,8 @@ from railvib.presets import list_presets
 
 __all__ = [
     "EXAMPLES",
+    "PAD_FIT_FILES",
+    "PAD_PREDICT_FILES",
     "PadFitJob",
     "PadFitReport",
     "PadPredictJob",
@@ -53,6 +55,17 @@ EXAMPLES = {
     "0p3hz": "wj7_synthetic_0p3hz.csv",
     "multifrequency": "wj7_synthetic_multifrequency.csv",
 }
+
+#: every file ``railvib pad fit`` writes to its folder (a later fit replaces them)
+PAD_FIT_FILES = ("pad.toml", "master_curve.png", "stiffness_vs_frequency.png")
+#: the files ``railvib pad predict`` writes into its folder (the set a later prediction replaces)
+PAD_PREDICT_FILES = (
+    "pad.toml",
+    "case.toml",
+    "fig06_hysteresis_loops.png",
+    "fig07_temperature_sweep.png",
+    "fig08_predicted_stiffness.png",
+)
 
 #: the job's fields with their command-line options (model and output folder apart)
 _OPTIONS = {
@@ -221,25 +234,44 @@ def fit_pad_to_folder(data: str | Path, outdir: str | Path, job: PadFitJob) -> P
     Returns
     -------
     PadFitReport
+
+    Raises
+    ------
+    railvib.errors.CaseError
+        Bad measurements or options, or `outdir` is not a folder (nothing written).
+    railvib.errors.OutputError
+        `outdir` or one of its files cannot be written (read-only, full disk).
+
+    Notes
+    -----
+    The files are written into a staging folder put in place at the end
+    (:func:`railvib.io.staged_folder`): `outdir` holds one fit's complete set
+    (:data:`PAD_FIT_FILES`; other files are kept), and a fit that fails or is stopped
+    leaves it as it was.
     """
     data, outdir = Path(data), Path(outdir)
-    result = fit_pad(
-        read_measurements_csv(data),
-        job.model,
-        job.reference_temperature_c,
-        job.wlf(),
-        vertical_shift=job.vertical_shift,
-        expansion_coefficient_per_k=job.expansion_coefficient_per_k,
-        n_terms=job.n_terms,
-        f0_hz=job.f0_hz,
-    )
-    band = (float(job.band_hz[0]), float(job.band_hz[1]))
-    fits = tuple(fit_log_linear(result.model, t, band, f0_hz=job.f0_hz) for t in job.temperatures_c)
-    text = "\n".join([result.summary(), *(_log_linear_line(ll, job.f0_hz) for ll in fits)])
-    header = f"{job.command_line(data, outdir)}\n" + text
-    files = [write_text(outdir / "pad.toml", pad_toml(result.model, header=header))]
-    files += _plots(result, job, data.name, outdir)
-    return PadFitReport(result, fits, text, tuple(files))
+    measurements = read_measurements_csv(data)
+    with staged_folder(outdir, PAD_FIT_FILES) as stage:  # an unwritable folder: before fitting
+        result = fit_pad(
+            measurements,
+            job.model,
+            job.reference_temperature_c,
+            job.wlf(),
+            vertical_shift=job.vertical_shift,
+            expansion_coefficient_per_k=job.expansion_coefficient_per_k,
+            n_terms=job.n_terms,
+            f0_hz=job.f0_hz,
+        )
+        band = (float(job.band_hz[0]), float(job.band_hz[1]))
+        fits = tuple(
+            fit_log_linear(result.model, t, band, f0_hz=job.f0_hz) for t in job.temperatures_c
+        )
+        text = "\n".join([result.summary(), *(_log_linear_line(ll, job.f0_hz) for ll in fits)])
+        header = f"{job.command_line(data, outdir)}\n" + text
+        toml = pad_toml(result.model, header=header)
+        files = [write_text(stage.path / "pad.toml", toml)]
+        files += _plots(result, job, data.name, stage.path)
+    return PadFitReport(result, fits, text, tuple(stage.finals(files)))
 
 
 def _log_linear_line(ll: LogLinearFit, f0_hz: float) -> str:
@@ -433,7 +465,9 @@ def predict_pad_to_folder(
 
     The paper's procedure (:func:`railvib.pads.predict_pad`) on a single-frequency
     temperature sweep, at `job.temperature_c`. Everything is computed and the case is
-    validated before any file is written.
+    validated before any file is written; the files are written into a staging folder
+    put in place at the end (:func:`railvib.io.staged_folder`), so `outdir` holds one
+    prediction's complete set (:data:`PAD_PREDICT_FILES`; other files are kept).
 
     Parameters
     ----------
@@ -481,12 +515,13 @@ def predict_pad_to_folder(
     }
     case_from_dict(case_doc, warn=False)  # refuse a case that would not load, before writing
     header = "".join(f"# {line}\n" for line in (job.command_line(data, outdir), *text.splitlines()))
-    files = [
-        write_text(outdir / "pad.toml", header + tomli_w.dumps(tables)),
-        write_text(outdir / "case.toml", header + tomli_w.dumps(case_doc)),
-    ]
-    files += _prediction_plots(prediction, fit, job, data.name, outdir)
-    return PadPredictReport(prediction, fit, text, tuple(files))
+    with staged_folder(outdir, PAD_PREDICT_FILES) as stage:
+        files = [
+            write_text(stage.path / "pad.toml", header + tomli_w.dumps(tables)),
+            write_text(stage.path / "case.toml", header + tomli_w.dumps(case_doc)),
+        ]
+        files += _prediction_plots(prediction, fit, job, data.name, stage.path)
+    return PadPredictReport(prediction, fit, text, tuple(stage.finals(files)))
 
 
 def write_example_data(outdir: str | Path, multifrequency: bool = False) -> Path:

@@ -41,7 +41,11 @@ def reproduce(outdir: Path, quiet: bool) -> None:
         transient=False,
     ) as bar:
         task = bar.add_task("running the cases", total=n_steps())
-        out = run_study(outdir, progress=lambda msg: bar.update(task, advance=1, description=msg))
+        try:
+            out = run_study(outdir, progress=lambda m: bar.update(task, advance=1, description=m))
+        except BaseException:
+            bar.live.transient = True  # the error is the one line shown, not a stopped bar
+            raise
     if quiet:
         return
     click.echo(f"{summary_line(out.table)}; {out.seconds:.1f} s")

@@ -21,7 +21,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from railvib.io import new_figure, save_figure
-from railvib.labels import rail_label
+from railvib.plot import OVERVIEW_GROUPS
 from railvib.plot.axes import SuperscriptLogFormatter, label_log_axis, log_axis
 from railvib.results.units import QUANTITY_UNITS, quantity_unit
 
@@ -40,15 +40,6 @@ __all__ = [
     "psd_ylim",
     "save_overview",
 ]
-
-#: (file stem, title, responses) of the response figures written by ``railvib run``
-OVERVIEW_GROUPS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
-    ("psd_carbody", "Car body", ("carbody.bounce",)),
-    ("psd_bogie", "Bogies", ("bogie1.bounce", "bogie2.bounce")),
-    ("psd_wheelset", "Wheelsets", tuple(f"wheelset{i}.bounce" for i in range(1, 5))),
-    ("psd_rail", "Rail under the wheels", tuple(rail_label(i) for i in range(1, 5))),
-    ("psd_pitch", "Pitch", ("carbody.pitch", "bogie1.pitch", "bogie2.pitch")),
-)
 
 #: decades of PSD shown below the peak by :func:`psd_ylim`
 PSD_DECADES = 8.0

@@ -32,6 +32,7 @@ __all__ = [
     "FIG8_BAND_HZ",
     "FIG8_PREDICTED",
     "FIG8_STATED",
+    "PAD_FIGURE_FILES",
     "SYNTHETIC_LABEL",
     "draw_fig6_loops",
     "draw_fig7_sweep",
@@ -49,6 +50,12 @@ SYNTHETIC_LABEL = "SYNTHETIC WJ-7 data (railvib/data/wj7), not measurements"
 FIG8_PREDICTED = ("pm30", "pm10", "pp20")
 #: cases whose stated log-linear laws Fig. 8 draws (dashed): Figs. 13-16 and Figs. 9-12
 FIG8_STATED = ("m30", "m10", "p20", "freqdep")
+#: PNG file of each pad figure, by the paper's figure number
+PAD_FIGURE_FILES = {
+    6: "fig06_pad_loops.png",
+    7: "fig07_pad_temperature_sweep.png",
+    8: "fig08_pad_stiffness.png",
+}
 #: band (Hz) and f0 (Hz) of the log-linear law read off each prediction
 FIG8_BAND_HZ = (5.0, 1000.0)
 _F0_HZ = 5.0
@@ -236,7 +243,7 @@ def draw_pad_figures(
         The paper's figure number, the laid-out figure and its PNG file name.
     """
     return [
-        (6, draw_fig6_loops(prediction), "fig06_pad_loops.png"),
-        (7, draw_fig7_sweep(prediction), "fig07_pad_temperature_sweep.png"),
-        (8, draw_fig8_prediction(cases, prediction), "fig08_pad_stiffness.png"),
+        (6, draw_fig6_loops(prediction), PAD_FIGURE_FILES[6]),
+        (7, draw_fig7_sweep(prediction), PAD_FIGURE_FILES[7]),
+        (8, draw_fig8_prediction(cases, prediction), PAD_FIGURE_FILES[8]),
     ]
