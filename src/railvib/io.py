@@ -170,17 +170,14 @@ def read_text(
             raise IsADirectoryError(21, "Is a directory")
         if not stat.S_ISREG(mode):
             raise CaseError(field, str(path), f"a {what} (a regular file, not a device or pipe)")
+        if info.st_size > max_bytes:
+            raise _too_large(field, path, what, max_bytes, info.st_size)
         with open(path, "rb") as fh:
             raw = fh.read(max_bytes + 1)
     except OSError as exc:
         raise CaseError(field, str(path), f"a readable {what} ({exc.strerror})") from None
-    if len(raw) > max_bytes:
-        size = max(info.st_size, len(raw))
-        raise CaseError(
-            field,
-            str(path),
-            f"a {what} of at most {max_bytes / 2**20:g} MiB; this one has {size / 2**20:.3g} MiB",
-        )
+    if len(raw) > max_bytes:  # it grew since stat()
+        raise _too_large(field, path, what, max_bytes, len(raw))
     kind = binary_kind(raw[:4096])
     if kind is not None:
         raise CaseError(field, str(path), f"a {what}, not {kind}{tail}")
@@ -195,6 +192,14 @@ def read_text(
             f"{line}) is not UTF-8: save the file as UTF-8",
         ) from None
     return text.removeprefix("\ufeff")
+
+
+def _too_large(field: str, path: Path, what: str, max_bytes: int, size: int) -> CaseError:
+    return CaseError(
+        field,
+        str(path),
+        f"a {what} of at most {max_bytes / 2**20:g} MiB; this one has {size / 2**20:.3g} MiB",
+    )
 
 
 def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:

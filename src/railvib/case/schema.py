@@ -166,8 +166,8 @@ class ContactSection(Section):
         json_schema_extra={"unit": "N/m"},
     )
     leading_wheel_position: float = quantity(
-        "m", "position of the leading wheel after a sleeper, in [0, d)", ge=0.0
-    )
+        "m", "position of the leading wheel after a sleeper, in [0, d)", ge=0.0, le=3.0
+    )  # d <= 3 m (track.sleeper_spacing)
 
 
 class FrequencySection(Section):

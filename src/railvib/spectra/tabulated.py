@@ -39,11 +39,24 @@ COLUMN_UNITS = {
 }
 
 
+#: largest wavenumber of a table, rad/m (a wavelength of 6 um: below any roughness measured)
+MAX_WAVENUMBER_RAD_PER_M = 1e6
+#: largest PSD of a table, m^2/(rad/m) (FRA class 1, the worst track, stays below 1e-4 above
+#: 0.01 rad/m): keeps every response PSD finite
+MAX_PSD_M2_PER_RAD_PER_M = 1.0
+
+
 def _check_column(name: str, values: NDArray[np.float64], unit: str) -> None:
     ok = np.isfinite(values) & (values > 0.0)
     if not np.all(ok):
         bad = float(values[~ok][0])
         raise CaseError(name, bad, f"every value must be finite and > 0 ({unit})")
+
+
+def _check_at_most(name: str, values: NDArray[np.float64], limit: float, unit: str) -> None:
+    if np.any(values > limit):
+        bad = float(values[values > limit][0])
+        raise CaseError(name, bad, f"every value must be <= {limit:g} ({unit})")
 
 
 #: keys of a ``type = "tabulated"`` table: a CSV file, or the two arrays inline
@@ -56,8 +69,24 @@ TABLE_PARAMETERS = (
         default=None,
     ),
     Parameter("delimiter", "", "field separator of the CSV file", "text", default=","),
-    Parameter("wavenumber_rad_per_m", "rad/m", "wavenumbers, inline", "numbers", default=None),
-    Parameter("psd_m2_per_rad_per_m", "m^2/(rad/m)", "PSD values, inline", "numbers", default=None),
+    Parameter(
+        "wavenumber_rad_per_m",
+        "rad/m",
+        "wavenumbers, inline",
+        "numbers",
+        default=None,
+        gt=0.0,
+        le=MAX_WAVENUMBER_RAD_PER_M,
+    ),
+    Parameter(
+        "psd_m2_per_rad_per_m",
+        "m^2/(rad/m)",
+        "PSD values, inline",
+        "numbers",
+        default=None,
+        gt=0.0,
+        le=MAX_PSD_M2_PER_RAD_PER_M,
+    ),
 )
 
 
@@ -95,6 +124,8 @@ class Tabulated(SpatialSpectrum):
             )
         _check_column("wavenumber_rad_per_m", om, "rad/m")
         _check_column("psd_m2_per_rad_per_m", s, "m^2/(rad/m)")
+        _check_at_most("wavenumber_rad_per_m", om, MAX_WAVENUMBER_RAD_PER_M, "rad/m")
+        _check_at_most("psd_m2_per_rad_per_m", s, MAX_PSD_M2_PER_RAD_PER_M, "m^2/(rad/m)")
         order = np.argsort(om)
         om, s = om[order], s[order]
         if np.any(np.diff(om) <= 0.0):

@@ -199,8 +199,9 @@ class PeriodicTrack(TrackModel):
         """Highest frequency the track is solved at, Hz (see :data:`MAX_BAY_WAVENUMBER`)."""
         d, rail = self.sleeper_spacing, self.rail
         stiffness = abs(rail.complex_bending_stiffness)
-        omega = np.sqrt(MAX_BAY_WAVENUMBER**4 * stiffness / (rail.mass_per_length * d**4))
-        return float(omega / (2.0 * np.pi))
+        # in this order, so a tiny spacing gives inf rather than a division by d**4 = 0
+        omega = MAX_BAY_WAVENUMBER**2 * float(np.sqrt(stiffness / rail.mass_per_length)) / d / d
+        return omega / (2.0 * np.pi)
 
     def check_frequencies(self, f: ArrayLike) -> None:
         """Refuse frequencies above :attr:`max_frequency_hz` (named as ``frequency.f_max``).
