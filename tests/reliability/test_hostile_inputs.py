@@ -418,8 +418,16 @@ def _listing(folder):
     return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
 
 
+#: inputs that take over a second (the 500-deep spectrum is a 2.6 MB file of table headers)
+SLOW = {"combined-spectrum-500-deep"}
+
+
 @pytest.mark.parametrize(
-    ("files", "argv", "names", "absent"), list(CORPUS.values()), ids=list(CORPUS)
+    ("files", "argv", "names", "absent"),
+    [
+        pytest.param(*entry, id=name, marks=[pytest.mark.slow] if name in SLOW else [])
+        for name, entry in CORPUS.items()
+    ],
 )
 def test_hostile_input_is_one_line_exit_2_and_writes_nothing(
     files, argv, names, absent, tmp_path, monkeypatch, capsys

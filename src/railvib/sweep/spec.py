@@ -650,6 +650,7 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tupl
     dims: set[str] = set()
     # first: its axis values would each warn that the pad ignores the temperature
     _check_temperature_axis(base, [ax.field for ax in spec.axes], base_dir)
+    _check_count(spec)  # before each value is validated (about 0.5 ms each)
     for i, ax in enumerate(spec.axes):
         where = f"axes[{i}]"
         if ax.field.split(".")[0] in _NOT_FIELDS:
@@ -689,10 +690,30 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tupl
     return tuple(axes)
 
 
+def _groups(spec: SweepFile) -> dict[str, int]:
+    """Number of values along each sweep dimension (zip label, axis name, or ``case``)."""
+    sizes: dict[str, int] = {}
+    for ax in spec.axes:
+        group = "case" if spec.mode == "zip" else (ax.zip or ax.dim)
+        sizes[group] = max(sizes.get(group, 0), len(ax.resolved_values()))
+    return sizes
+
+
+def _check_count(spec: SweepFile) -> None:
+    """Refuse a sweep of more than :data:`MAX_SWEEP_CASES` cases."""
+    sizes = _groups(spec)
+    cases = math.prod(sizes.values())
+    if cases > MAX_SWEEP_CASES:
+        what = " x ".join(f"{n:,} ({group})" for group, n in sizes.items())
+        raise CaseError(
+            "axes", f"{cases:,} cases", f"at most {MAX_SWEEP_CASES:,} cases; this sweep has {what}"
+        )
+
+
 def _check_size(
     axes: Sequence[SweepAxis], spec: SweepFile, base: dict[str, Any], base_dir: Path
 ) -> None:
-    """Refuse a sweep of more than :data:`MAX_SWEEP_CASES` cases or too large for memory.
+    """Refuse a sweep whose results do not fit in this machine's memory.
 
     The assembled sweep holds the per-frequency variables it keeps (float64) of every
     case in memory: ``cases x frequencies x (values per frequency) x 8`` bytes.
@@ -700,10 +721,6 @@ def _check_size(
     sizes = {ax.group: ax.size for ax in axes}
     cases = math.prod(sizes.values())
     what = " x ".join(f"{n:,} ({group})" for group, n in sizes.items())
-    if cases > MAX_SWEEP_CASES:
-        raise CaseError(
-            "axes", f"{cases:,} cases", f"at most {MAX_SWEEP_CASES:,} cases; this sweep has {what}"
-        )
     memory = physical_memory_bytes()
     if memory is None or not spec.variables:
         return
