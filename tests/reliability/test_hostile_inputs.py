@@ -256,7 +256,7 @@ CORPUS = {
     "rms-bands-too-many": (
         {"case.toml": CASE + "[output]\nrms_bands = " + str([[1.0, 900.0]] * 10**4) + "\n"},
         _run(),
-        ("output.rms_bands", f"at most {MAX_RMS_BANDS} items"),
+        ("output.rms_bands", f"at most {MAX_RMS_BANDS} bands"),
         (),
     ),
     # ---- item 4: overflow and odd values

@@ -218,6 +218,16 @@ class OutputSection(Section):
         json_schema_extra={"unit": _THRESHOLD.unit},
     )
 
+    @field_validator("rms_bands", mode="before")
+    @classmethod
+    def _count(cls, value: Any) -> Any:
+        """Refuse too many bands before each is validated (10^5 bands took 10 s)."""
+        if isinstance(value, list | tuple) and len(value) > MAX_RMS_BANDS:
+            raise CaseError(
+                "output.rms_bands", f"<{len(value):,} bands>", f"at most {MAX_RMS_BANDS} bands"
+            )
+        return value
+
     @model_validator(mode="after")
     def _bands(self) -> OutputSection:
         for i, (lo, hi) in enumerate(self.rms_bands):
