@@ -20,7 +20,11 @@ __all__ = [
     "RailvibError",
     "SolverWarning",
     "did_you_mean",
+    "excerpt",
 ]
+
+#: longest text of a value a :class:`CaseError` message shows (longer ones are cut)
+MAX_VALUE_CHARS = 200
 
 
 class RailvibError(Exception):
@@ -113,7 +117,7 @@ class CaseError(RailvibError, ValueError):
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{field} = {value!r}: {allowed}")
+        super().__init__(f"{field} = {_shown(value)}: {allowed}")
 
 
 class PlausibilityWarning(UserWarning):
@@ -154,6 +158,37 @@ class RailvibDeprecationWarning(DeprecationWarning):
     The deprecated form keeps working (same result) until it is removed in a later
     release. Filter this class to silence or escalate railvib's deprecations alone.
     """
+
+
+def _shown(value: Any) -> str:
+    """``repr(value)``, cut to :data:`MAX_VALUE_CHARS` (a message never echoes a whole file)."""
+    text = repr(value)
+    if len(text) <= MAX_VALUE_CHARS:
+        return text
+    return f"{text[: MAX_VALUE_CHARS - 30]}... ({len(text):,} characters)"
+
+
+def excerpt(text: str, limit: int = 40) -> str:
+    """At most `limit` printable characters of `text`, for an error message about a file.
+
+    A message must not echo a file's contents (the file may be anything a path
+    points to, e.g. ``/etc/passwd``), but a few characters help to recognise it.
+
+    Parameters
+    ----------
+    text : str
+        Text read from a file (a header cell, a row).
+    limit : int
+        Most characters kept (a count).
+
+    Returns
+    -------
+    str
+        `text` with every non-printable character (control characters, line breaks)
+        replaced by ``?``, cut to `limit` characters with ``...`` when longer.
+    """
+    clean = "".join(c if c.isprintable() else "?" for c in str(text)[: limit + 1])
+    return clean if len(clean) <= limit else clean[: max(limit - 3, 0)] + "..."
 
 
 def did_you_mean(word: Any, choices: Iterable[str]) -> str:

@@ -43,15 +43,20 @@ if TYPE_CHECKING:  # matplotlib is imported only by code that draws
 
 __all__ = [
     "FIGURE_DPI",
+    "MAX_NESTING",
+    "MAX_TABLE_BYTES",
+    "MAX_TOML_BYTES",
     "StagedFolder",
     "atomic_path",
     "is_temporary_name",
     "os_error_reason",
     "remove_temporaries",
     "staged_folder",
-    "new_figure",
     "binary_kind",
+    "check_nesting",
+    "new_figure",
     "railvib_version",
+    "read_text",
     "read_toml",
     "save_figure",
     "write_text",
@@ -59,6 +64,16 @@ __all__ = [
 
 #: resolution of every PNG railvib writes, dots per inch
 FIGURE_DPI = 110
+
+#: largest case or sweep file read, bytes (4 MiB; the template is 5 kB, a sweep over
+#: inline tables some 100 kB): a larger file is refused before it is parsed
+MAX_TOML_BYTES = 4 * 2**20
+#: largest CSV table read (irregularity spectrum, pad measurements), bytes (64 MiB, about
+#: two million rows; a measured spectrum has some thousand)
+MAX_TABLE_BYTES = 64 * 2**20
+#: deepest nesting of tables and arrays in a case or sweep file (a case nests 5 levels:
+#: irregularity.long_wave.long_wave...; deeper input is refused before Python recurses)
+MAX_NESTING = 32
 
 
 def railvib_version() -> str:
@@ -560,19 +575,90 @@ def binary_kind(data: bytes) -> str | None:
     -------
     str or None
         E.g. ``"a netCDF-4/HDF5 file (e.g. results.nc)"``, ``"a PNG image"`` or
-        ``"a binary file"``; None when `data` is UTF-8 text without NUL bytes.
+        ``"a binary file"`` (one holding NUL bytes); None for text, in any encoding:
+        :func:`read_text` says where text that is not UTF-8 is not.
     """
     for magic, kind in _MAGIC:
         if data.startswith(magic):
             return kind
     if b"\x00" in data:
         return "a binary file"
-    try:
-        data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        if exc.start < len(data) - 4:  # not merely a character cut at the end of `data`
-            return "a binary file"
     return None
+
+
+def read_text(
+    path: str | Path, field: str, what: str, *, hint: str = "", max_bytes: int = MAX_TABLE_BYTES
+) -> str:
+    """The UTF-8 text of the input file `path`; any other file is a one-line error.
+
+    Refused, each naming `path`: a file that cannot be read, a folder, a device or
+    pipe (``/dev/zero``), a file over `max_bytes`, a binary file (:func:`binary_kind`)
+    and text that is not UTF-8 (with the offset and line of the first bad byte).
+    A leading byte-order mark is dropped.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    field : str
+        The field the file is given as (``"case"``, ``"irregularity.path"``), named in
+        the error.
+    what : str
+        What the file should be, for the error (``"TOML case file"``, ``"CSV table"``).
+    hint : str
+        Where to get a good file, appended to the error for a binary file.
+    max_bytes : int
+        Largest size accepted, bytes.
+
+    Returns
+    -------
+    str
+        The text.
+
+    Raises
+    ------
+    CaseError
+        ``<field> = '<path>': a <what> ...`` saying what is wrong with the file.
+    """
+    path = Path(path)
+    tail = f"; {hint}" if hint else ""
+    try:
+        info = path.stat()  # before opening: opening a pipe would wait for a writer
+        mode = info.st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError(21, "Is a directory")
+        if not stat.S_ISREG(mode):
+            raise CaseError(field, str(path), f"a {what} (a regular file, not a device or pipe)")
+        if info.st_size > max_bytes:
+            raise _too_large(field, path, what, max_bytes, info.st_size)
+        with open(path, "rb") as fh:
+            raw = fh.read(max_bytes + 1)
+    except OSError as exc:
+        raise CaseError(field, str(path), f"a readable {what} ({exc.strerror})") from None
+    if len(raw) > max_bytes:  # it grew since stat()
+        raise _too_large(field, path, what, max_bytes, len(raw))
+    kind = binary_kind(raw[:4096])
+    if kind is not None:
+        raise CaseError(field, str(path), f"a {what}, not {kind}{tail}")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        raise CaseError(
+            field,
+            str(path),
+            f"a {what} in UTF-8 text; byte 0x{raw[exc.start]:02x} at offset {exc.start} (line "
+            f"{line}) is not UTF-8: save the file as UTF-8",
+        ) from None
+    return text.removeprefix("\ufeff")
+
+
+def _too_large(field: str, path: Path, what: str, max_bytes: int, size: int) -> CaseError:
+    return CaseError(
+        field,
+        str(path),
+        f"a {what} of at most {max_bytes / 2**20:g} MiB; this one has {size / 2**20:.3g} MiB",
+    )
 
 
 def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:
@@ -581,7 +667,7 @@ def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:
     Parameters
     ----------
     path : str or pathlib.Path
-        The file.
+        The file (UTF-8 text of at most :data:`MAX_TOML_BYTES`, see :func:`read_text`).
     field : str
         What the file is (``"case"``, ``"sweep"``), named in the error.
     hint : str
@@ -591,33 +677,70 @@ def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:
     Returns
     -------
     dict
-        The parsed tables.
+        The parsed tables (nested at most :data:`MAX_NESTING` levels deep).
 
     Raises
     ------
     CaseError
-        ``<field> = '<path>': a readable TOML file (...)``, ``a TOML <field> file, not
-        a netCDF-4/HDF5 file ...`` (or another binary kind, or an empty file) or
-        ``valid TOML (...)``.
+        ``<field> = '<path>': a readable TOML file (...)``, ``a TOML <field> file (text),
+        not a netCDF-4/HDF5 file ...`` (or another binary kind, text that is not UTF-8,
+        or an empty file), ``valid TOML (...)``, or a value nested too deep (named by
+        its dotted key).
     """
-    try:
-        raw = Path(path).read_bytes()
-    except OSError as exc:
-        raise CaseError(field, str(path), f"a readable TOML file ({exc.strerror})") from None
-    tail = f"; {hint}" if hint else ""
-    kind = binary_kind(raw[:4096])
-    if kind is not None:
-        raise CaseError(field, str(path), f"a TOML {field} file, not {kind}{tail}")
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise CaseError(field, str(path), f"a UTF-8 TOML text file ({exc.reason})") from None
+    text = read_text(path, field, f"TOML {field} file", hint=hint, max_bytes=MAX_TOML_BYTES)
     if not text.strip():
+        tail = f"; {hint}" if hint else ""
         raise CaseError(field, str(path), f"a TOML {field} file, not an empty file{tail}")
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(field, str(path), f"valid TOML ({exc})") from None
+    except RecursionError:  # arrays or inline tables some 400 levels deep
+        raise CaseError(
+            field, str(path), f"TOML nested at most {MAX_NESTING} levels deep (arrays, tables)"
+        ) from None
+    check_nesting(data, field)
+    return data
+
+
+def check_nesting(data: Any, field: str, limit: int = MAX_NESTING) -> None:
+    """Refuse tables and lists nested more than `limit` levels deep in `data`.
+
+    Validation, copies and model builders recurse into nested tables; a limit
+    well above what any case needs turns a hostile input into a one-line error
+    instead of a ``RecursionError``. The walk itself does not recurse.
+
+    Parameters
+    ----------
+    data : object
+        Parsed input (dicts, lists, tuples and scalars).
+    field : str
+        Name of `data` in errors (``"case"``).
+    limit : int
+        Deepest nesting accepted (levels below `data`).
+
+    Raises
+    ------
+    CaseError
+        Naming the dotted key where the nesting passes `limit`.
+    """
+    stack: list[tuple[Any, tuple[str, ...]]] = [(data, ())]
+    while stack:
+        node, where = stack.pop()
+        if isinstance(node, dict):
+            children = [(v, (*where, str(k))) for k, v in node.items()]
+        elif isinstance(node, list | tuple):
+            children = [(v, (*where, f"[{i}]")) for i, v in enumerate(node)]
+        else:
+            continue
+        if children and len(where) >= limit:
+            shown = ".".join(where[:8]).replace(".[", "[")
+            raise CaseError(
+                f"{shown}..." if len(where) > 8 else shown or field,
+                f"<nested deeper than {limit} levels>",
+                f"tables and lists nested at most {limit} levels deep",
+            )
+        stack.extend(children)
 
 
 def write_text(path: str | Path, text: str) -> Path:

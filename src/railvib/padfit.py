@@ -28,6 +28,7 @@ from railvib.pads import (
     read_measurements_csv,
     wj7_example_csv,
 )
+from railvib.pads.fit import check_n_terms
 from railvib.pads.tts import wlf_choice
 from railvib.plot.pads import (
     plot_hysteresis_loops,
@@ -145,6 +146,7 @@ class PadFitJob:
                 self.model,
                 f"one of {', '.join(fittable)} (aliases {', '.join(aliases)}){close}",
             )
+        check_n_terms(self.n_terms, "pad_fit.n_terms (--n-terms)")
         if len(self.band_hz) != 2:
             raise CaseError("pad_fit.band_hz (--band)", self.band_hz, "two frequencies (Hz)")
         self.wlf()  # a contradictory WLF choice is refused before any fitting
