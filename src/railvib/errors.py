@@ -13,12 +13,18 @@ from typing import Any
 __all__ = [
     "CaseError",
     "LinearModelInvalid",
+    "NonFiniteResult",
+    "OutputError",
     "PlausibilityWarning",
     "RailvibDeprecationWarning",
     "RailvibError",
     "SolverWarning",
     "did_you_mean",
+    "excerpt",
 ]
+
+#: longest text of a value a :class:`CaseError` message shows (longer ones are cut)
+MAX_VALUE_CHARS = 200
 
 
 class RailvibError(Exception):
@@ -35,6 +41,63 @@ class LinearModelInvalid(RailvibError):
     """
 
     exit_code = 3
+
+
+class OutputError(RailvibError, OSError):
+    """A file or folder could not be written: names it and why, on one line.
+
+    Raised for the environment's faults (a full disk, a file-size limit, a read-only
+    or missing folder, a path below a file), never with a partial file left behind
+    (:func:`railvib.io.atomic_path`). It is an :class:`OSError` too, so code that
+    catches those keeps working; the command line prints it as one ``error:`` line
+    and exits with code 2.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file or folder that could not be written, as the user named it.
+    reason : str
+        Why, e.g. ``"No space left on device"``.
+    errno : int, optional
+        The operating system's error number (``errno.ENOSPC``, ...).
+    """
+
+    def __init__(self, path: Any, reason: str, errno: int | None = None) -> None:
+        self.path = str(path)
+        self.reason = reason
+        Exception.__init__(self, f"cannot write {self.path}: {reason}")
+        self.errno = errno
+        self.strerror = reason
+        self.filename = self.path
+
+    def __str__(self) -> str:
+        return f"cannot write {self.path}: {self.reason}"
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.path, self.reason, self.errno))
+
+    def with_path(self, path: Any) -> OutputError:
+        """The same error naming `path` instead (e.g. the final name of a staged file).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The name to show.
+
+        Returns
+        -------
+        OutputError
+        """
+        return type(self)(path, self.reason, self.errno)
+
+
+class NonFiniteResult(RailvibError):
+    """A computed result holds NaN or infinite values; nothing is written.
+
+    The message names the variable, how many frequencies are affected and the first
+    one (Hz); the inputs behind it are beyond what the solver resolves in floating
+    point (the command line exits with code 2).
+    """
 
 
 class CaseError(RailvibError, ValueError):
@@ -54,7 +117,7 @@ class CaseError(RailvibError, ValueError):
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{field} = {value!r}: {allowed}")
+        super().__init__(f"{field} = {_shown(value)}: {allowed}")
 
 
 class PlausibilityWarning(UserWarning):
@@ -95,6 +158,37 @@ class RailvibDeprecationWarning(DeprecationWarning):
     The deprecated form keeps working (same result) until it is removed in a later
     release. Filter this class to silence or escalate railvib's deprecations alone.
     """
+
+
+def _shown(value: Any) -> str:
+    """``repr(value)``, cut to :data:`MAX_VALUE_CHARS` (a message never echoes a whole file)."""
+    text = repr(value)
+    if len(text) <= MAX_VALUE_CHARS:
+        return text
+    return f"{text[: MAX_VALUE_CHARS - 30]}... ({len(text):,} characters)"
+
+
+def excerpt(text: str, limit: int = 40) -> str:
+    """At most `limit` printable characters of `text`, for an error message about a file.
+
+    A message must not echo a file's contents (the file may be anything a path
+    points to, e.g. ``/etc/passwd``), but a few characters help to recognise it.
+
+    Parameters
+    ----------
+    text : str
+        Text read from a file (a header cell, a row).
+    limit : int
+        Most characters kept (a count).
+
+    Returns
+    -------
+    str
+        `text` with every non-printable character (control characters, line breaks)
+        replaced by ``?``, cut to `limit` characters with ``...`` when longer.
+    """
+    clean = "".join(c if c.isprintable() else "?" for c in str(text)[: limit + 1])
+    return clean if len(clean) <= limit else clean[: max(limit - 3, 0)] + "..."
 
 
 def did_you_mean(word: Any, choices: Iterable[str]) -> str:

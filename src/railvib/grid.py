@@ -9,7 +9,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
 
-__all__ = ["FrequencyGrid", "trapezoid"]
+__all__ = ["MAX_GRID_SIZE", "FrequencyGrid", "trapezoid"]
+
+#: most frequencies of any grid (50 million: the grid alone is 400 MB and a run of it,
+#: at some 2 kB per frequency, 100 GB); a larger one is refused before it is allocated
+MAX_GRID_SIZE = 50_000_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -33,6 +37,9 @@ class FrequencyGrid:
     f: NDArray[np.float64] = field(repr=False)
 
     def __post_init__(self) -> None:
+        size = np.size(self.f)
+        if size > MAX_GRID_SIZE:
+            raise CaseError("frequency", f"{size:,} values", f"at most {MAX_GRID_SIZE:,} (Hz)")
         f = np.array(self.f, dtype=float)  # a copy: the caller's array stays theirs
         if f.ndim != 1 or f.size == 0:
             raise CaseError("frequency", f"array of shape {f.shape}", "a non-empty 1-D array (Hz)")
@@ -80,7 +87,8 @@ class FrequencyGrid:
         Raises
         ------
         CaseError
-            If the band or the step is not valid.
+            If the band or the step is not valid, or the grid would hold more than
+            :data:`MAX_GRID_SIZE` frequencies.
         """
         n = cls.linear_size(f_min, f_max, step)
         return cls(np.asarray(f_min + step * np.arange(n), dtype=np.float64))
@@ -107,12 +115,21 @@ class FrequencyGrid:
         Raises
         ------
         CaseError
-            If the band or the step is not valid.
+            If the band or the step is not valid, or the grid would hold more than
+            :data:`MAX_GRID_SIZE` frequencies.
         """
         _check_band(f_min, f_max)
         if not (np.isfinite(step) and step > 0):
             raise CaseError("frequency.step", step, "must be a finite number > 0 (Hz)")
-        return int(np.floor((f_max - f_min) / step + 1e-9)) + 1
+        count = np.floor((f_max - f_min) / step + 1e-9) + 1.0
+        if not count <= MAX_GRID_SIZE:  # before int(): a huge float is no use as a count
+            raise CaseError(
+                "frequency.step",
+                step,
+                f"a grid of at most {MAX_GRID_SIZE:,} frequencies; this step gives "
+                f"{count:.3g} over {f_min:g}-{f_max:g} Hz (Hz)",
+            )
+        return int(count)
 
     @classmethod
     def logarithmic(cls, f_min: float, f_max: float, n: int) -> FrequencyGrid:
@@ -120,6 +137,8 @@ class FrequencyGrid:
         _check_band(f_min, f_max)
         if not (isinstance(n, int | np.integer | float) and np.isfinite(n) and int(n) >= 2):
             raise CaseError("frequency.n", n, "must be an integer >= 2")
+        if int(n) > MAX_GRID_SIZE:
+            raise CaseError("frequency.n", n, f"at most {MAX_GRID_SIZE:,} frequencies")
         return cls(np.geomspace(f_min, f_max, int(n)))
 
     @property

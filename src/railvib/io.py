@@ -1,24 +1,41 @@
-"""Writing files and stamping them: atomic writes, figures, provenance.
+"""Writing files and stamping them: atomic writes, staged output folders, figures, provenance.
 
 Every file railvib writes goes through :func:`atomic_path` (a temporary file next
 to the target, renamed onto it only when the writer succeeds), so a file is
-either complete or absent whatever moment a run is stopped. Every PNG goes
-through :func:`save_figure`, so figures share one resolution and are closed
+either complete or absent whatever moment a run is stopped; a write the system
+refuses (a full disk, a file-size limit, a read-only folder) is an
+:class:`~railvib.errors.OutputError` naming the file, with the temporary removed.
+The commands that write a set of files (``railvib run``, ``reproduce``, ``pad
+fit``) write them into a staging folder swapped in at the end
+(:func:`staged_folder`), so their folder holds one run's complete set. Every PNG
+goes through :func:`save_figure`, so figures share one resolution and are closed
 after saving.
 """
 
 from __future__ import annotations
 
+import ctypes
+import errno as errnos
 import os
+import re
+import secrets
+import shutil
+import stat
+import sys
 import tempfile
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Collection, Iterable, Iterator
 from contextlib import contextmanager
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, OutputError
+
+try:  # POSIX: a staging folder in use is locked, so no other run removes it
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None  # type: ignore[assignment]
 
 if TYPE_CHECKING:  # matplotlib is imported only by code that draws
     from matplotlib.axes import Axes
@@ -26,10 +43,20 @@ if TYPE_CHECKING:  # matplotlib is imported only by code that draws
 
 __all__ = [
     "FIGURE_DPI",
+    "MAX_NESTING",
+    "MAX_TABLE_BYTES",
+    "MAX_TOML_BYTES",
+    "StagedFolder",
     "atomic_path",
-    "new_figure",
+    "is_temporary_name",
+    "os_error_reason",
+    "remove_temporaries",
+    "staged_folder",
     "binary_kind",
+    "check_nesting",
+    "new_figure",
     "railvib_version",
+    "read_text",
     "read_toml",
     "save_figure",
     "write_text",
@@ -38,6 +65,16 @@ __all__ = [
 #: resolution of every PNG railvib writes, dots per inch
 FIGURE_DPI = 110
 
+#: largest case or sweep file read, bytes (4 MiB; the template is 5 kB, a sweep over
+#: inline tables some 100 kB): a larger file is refused before it is parsed
+MAX_TOML_BYTES = 4 * 2**20
+#: largest CSV table read (irregularity spectrum, pad measurements), bytes (64 MiB, about
+#: two million rows; a measured spectrum has some thousand)
+MAX_TABLE_BYTES = 64 * 2**20
+#: deepest nesting of tables and arrays in a case or sweep file (a case nests 5 levels:
+#: irregularity.long_wave.long_wave...; deeper input is refused before Python recurses)
+MAX_NESTING = 32
+
 
 def railvib_version() -> str:
     """Installed railvib version (``"unknown"`` when run from a source tree)."""
@@ -45,6 +82,33 @@ def railvib_version() -> str:
         return version("railvib")
     except PackageNotFoundError:
         return "unknown"
+
+
+def os_error_reason(exc: OSError) -> str:
+    """The system's reason for `exc` in a few words (``"No space left on device"``).
+
+    HDF5 and other libraries wrap the system's error in a long message; the error
+    number gives the short text.
+
+    Parameters
+    ----------
+    exc : OSError
+        The error.
+
+    Returns
+    -------
+    str
+        :func:`os.strerror` of its error number, else its first line.
+    """
+    if isinstance(exc, OutputError):
+        return exc.reason
+    if exc.errno is not None:
+        return os.strerror(exc.errno)
+    return (str(exc).splitlines() or [type(exc).__name__])[0]
+
+
+def _output_error(path: str | Path, exc: OSError) -> OutputError:
+    return OutputError(path, os_error_reason(exc), exc.errno)
 
 
 @contextmanager
@@ -60,20 +124,431 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     ------
     pathlib.Path
         A temporary file in the same folder (so the final rename is atomic).
+
+    Raises
+    ------
+    OutputError
+        When the folder cannot be made or the file cannot be written or renamed (a
+        full disk, a file-size limit, a read-only folder: any :class:`OSError` of the
+        block), naming `path` and the system's reason; the temporary is removed and
+        an existing `path` is left as it was.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    os.close(fd)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+        os.close(fd)
+    except OSError as exc:
+        raise _output_error(path, exc) from None
     try:
         yield Path(tmp)
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual file mode
         os.replace(tmp, path)
+    except OutputError:
+        raise
+    except OSError as exc:
+        raise _output_error(path, exc) from None
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        if os.path.lexists(tmp):
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass  # the folder went away or became read-only: nothing more to do
+
+
+#: railvib's temporary names: ``.NAME.XXXXXXXX.part`` (:func:`tempfile.mkstemp`'s 8
+#: characters; files of :func:`atomic_path`, folders of :func:`staged_folder`) and
+#: ``.NAME.XXXXXXXX.old`` (a folder replaced by :func:`staged_folder`)
+_TEMPORARY = re.compile(r"^\..+\.[a-z0-9_]{8}\.(part|old)$")
+
+
+def is_temporary_name(name: str) -> bool:
+    """Whether `name` is one of railvib's temporary names (``.results.nc.k2x_9qaz.part``).
+
+    Parameters
+    ----------
+    name : str
+        A file or folder name (no folder part).
+
+    Returns
+    -------
+    bool
+        True for the names :func:`atomic_path` and :func:`staged_folder` give their
+        temporaries, which a stopped run may leave behind.
+    """
+    return _TEMPORARY.match(name) is not None
+
+
+def _lock(folder: Path) -> int | None:
+    """Hold an exclusive lock on `folder` (released when the fd is closed or the process dies)."""
+    if fcntl is None:  # pragma: no cover - Windows
+        return None
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        os.close(fd)
+        return None
+    return fd
+
+
+def _in_use(path: Path) -> bool:
+    """Whether `path` is a folder locked by a running railvib (another run's staging folder)."""
+    if fcntl is None or not path.is_dir() or path.is_symlink():
+        return False
+    try:
+        fd = os.open(path, os.O_RDONLY)
+    except OSError:
+        return False
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        return True
+    finally:
+        os.close(fd)  # also releases the lock just taken
+    return False
+
+
+def _remove(path: Path) -> None:
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        try:
+            path.unlink()
+        except OSError:
+            pass
+
+
+def remove_temporaries(folder: str | Path, prefix: str = "") -> list[Path]:
+    """Remove the temporaries a stopped railvib left in `folder` (its own names only).
+
+    A run killed with SIGKILL (or a power cut) cannot clean up: it may leave
+    ``.NAME.XXXXXXXX.part`` files of :func:`atomic_path` and staging folders of
+    :func:`staged_folder`. Only names of that form (:func:`is_temporary_name`) are
+    removed, and not a staging folder a running railvib holds (it is locked).
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        The folder to clean (not searched recursively); a missing one is fine.
+    prefix : str
+        Remove only temporaries whose name starts with ``"." + prefix + "."`` (e.g.
+        the staging folders of one output folder); empty: all of them.
+
+    Returns
+    -------
+    list of pathlib.Path
+        What was removed.
+    """
+    folder = Path(folder)
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return []
+    start = f".{prefix}." if prefix else "."
+    removed = []
+    for name in names:
+        if name.startswith(start) and is_temporary_name(name):
+            path = folder / name
+            if not _in_use(path):
+                _remove(path)
+                removed.append(path)
+    return removed
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap the paths `a` and `b` in one step (Linux ``renameat2(RENAME_EXCHANGE)``).
+
+    Returns False, having changed nothing, where the system or file system has no
+    such call; raises OSError for any other failure.
+    """
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+    except (AttributeError, OSError):  # pragma: no cover - a libc without it (musl < 1.2?)
+        return False
+    at_fdcwd, rename_exchange = -100, 2
+    renameat2.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p]
+    renameat2.argtypes += [ctypes.c_uint]
+    if renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errnos.ENOSYS, errnos.EINVAL, errnos.ENOTSUP, errnos.EOPNOTSUPP):
+        return False
+    raise OSError(err, os.strerror(err), str(b))
+
+
+class StagedFolder:
+    """The staging folder of a command's output (see :func:`staged_folder`).
+
+    Parameters
+    ----------
+    target : pathlib.Path
+        The output folder as the user named it (shown in messages and file lists).
+    path : pathlib.Path
+        The staging folder the command writes into.
+    """
+
+    def __init__(self, target: Path, path: Path) -> None:
+        self.target = target
+        self.path = path
+
+    def final(self, path: str | Path) -> Path:
+        """Where the staged file `path` lies once the folder is committed.
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            A file inside :attr:`path`.
+
+        Returns
+        -------
+        pathlib.Path
+            The same file below :attr:`target`.
+        """
+        return self.target / Path(path).relative_to(self.path)
+
+    def finals(self, paths: Iterable[str | Path]) -> list[Path]:
+        """:meth:`final` of each of `paths`.
+
+        Parameters
+        ----------
+        paths : iterable of str or pathlib.Path
+            Files inside :attr:`path`.
+
+        Returns
+        -------
+        list of pathlib.Path
+        """
+        return [self.final(p) for p in paths]
+
+
+def _kind(path: Path) -> str:
+    mode = path.stat().st_mode
+    if stat.S_ISCHR(mode):
+        return "a character device"
+    if stat.S_ISBLK(mode):
+        return "a block device"
+    if stat.S_ISFIFO(mode):
+        return "a named pipe"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "a file"
+
+
+def _check_folder_path(target: Path, field: str) -> None:
+    """Refuse a `target` that is not a folder or lies below a file (before any work)."""
+    try:
+        if target.exists() and not target.is_dir():
+            raise CaseError(field, str(target), f"a folder, not {_kind(target)}")
+        for above in target.parents:
+            if above.exists():
+                if not above.is_dir():
+                    raise CaseError(
+                        field, str(target), f"a folder path ({str(above)!r} is {_kind(above)})"
+                    )
+                break
+    except OSError as exc:  # e.g. a component that cannot be searched
+        raise CaseError(field, str(target), f"a folder ({os_error_reason(exc)})") from None
+
+
+def _check_writable(real: Path, target: Path) -> None:
+    """Refuse an existing folder that cannot be written (read-only file system or mode)."""
+    if not real.is_dir():
+        return
+    if os.statvfs(real).f_flag & os.ST_RDONLY:
+        err = errnos.EROFS
+    elif not os.access(real, os.W_OK | os.X_OK):  # as root: only without CAP_DAC_OVERRIDE
+        err = errnos.EACCES
+    else:
+        return
+    raise OutputError(target, os.strerror(err), err)
+
+
+def _walk_files(root: Path) -> list[str]:
+    """Every non-folder entry below `root`, as relative POSIX paths."""
+    out = []
+    for folder, dirs, files in os.walk(root):
+        rel = Path(folder).relative_to(root)
+        out += [(rel / name).as_posix() for name in files]
+        out += [(rel / name).as_posix() for name in dirs if (Path(folder) / name).is_symlink()]
+    return sorted(out)
+
+
+def _only_owned(folder: Path, owned: Collection[str]) -> bool:
+    """Whether `folder` holds nothing but `owned` files (and their folders) and temporaries."""
+    owned_dirs = {p.as_posix() for name in owned for p in Path(name).parents if str(p) != "."}
+    for here, dirs, files in os.walk(folder):
+        rel = Path(here).relative_to(folder)
+        for name in files:
+            if (rel / name).as_posix() not in owned and not is_temporary_name(name):
+                return False
+        for name in list(dirs):
+            rel_dir = (rel / name).as_posix()
+            if is_temporary_name(name):
+                dirs.remove(name)
+            elif rel_dir not in owned_dirs or (Path(here) / name).is_symlink():
+                return False
+    return True
+
+
+def _contains_cwd(folder: Path) -> bool:
+    try:
+        cwd = Path(os.getcwd()).resolve()
+    except OSError:
+        return False
+    return cwd == folder or folder in cwd.parents
+
+
+def _folder_mode() -> int:
+    umask = os.umask(0)
+    os.umask(umask)
+    return 0o777 & ~umask
+
+
+@contextmanager
+def staged_folder(
+    outdir: str | Path, owned: Collection[str] = (), *, field: str = "output"
+) -> Iterator[StagedFolder]:
+    """Write a command's files into a staging folder; put them in `outdir` only if all succeed.
+
+    The block writes into ``staged.path``. When it ends without an error the set is
+    committed: a new `outdir` (or one that holds nothing but files of `owned` and
+    railvib's temporaries, i.e. an earlier result of the same command) is replaced by
+    the staging folder in one step (Linux ``renameat2(RENAME_EXCHANGE)``; elsewhere
+    two renames), so whatever moment the process is killed, `outdir` holds either the
+    complete earlier set or the complete new one. A folder that also holds other
+    files (a case file, the user's notes) keeps them: the new files are renamed into
+    it one by one and the earlier `owned` files the new set lacks are removed (a
+    commit of a few milliseconds). When the block fails (or is interrupted), the
+    staging folder and any folder made for it are removed: nothing new is left.
+
+    Temporaries of earlier runs that were killed (:func:`remove_temporaries`) are
+    removed on entry, before any work.
+
+    Parameters
+    ----------
+    outdir : str or pathlib.Path
+        The output folder (created if missing, with its parents).
+    owned : collection of str
+        Relative POSIX paths of every file the command may write there (e.g.
+        ``"results.nc"``, ``"cases/x.toml"``): the earlier set it replaces.
+    field : str
+        The option naming the folder, in error messages.
+
+    Yields
+    ------
+    StagedFolder
+        ``.path``: the folder to write into; ``.final(p)``: where a file ends up.
+
+    Raises
+    ------
+    CaseError
+        `outdir` is not a folder (a file, ``/dev/full``) or lies below a file (on
+        entry, before the block runs).
+    OutputError
+        The folder cannot be created or written (a read-only file system or folder,
+        no permission, a full disk), on entry, before the block runs; or a file of the
+        block, named by its final path.
+    """
+    target = Path(outdir)
+    _check_folder_path(target, field)
+    real = Path(os.path.realpath(target))
+    _check_writable(real, target)
+    made = [p for p in (real, *real.parents) if not p.exists()]
+    try:
+        real.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise _output_error(target, exc) from None
+    remove_temporaries(real.parent, real.name)
+    if real.is_dir():
+        remove_temporaries(real)
+        for sub in {Path(name).parent for name in owned} - {Path(".")}:
+            remove_temporaries(real / sub)
+    beside = not (real.is_dir() and os.path.ismount(real))
+    try:
+        stage = _make_stage(real, beside)
+    except OSError as exc:
+        if not beside or not real.is_dir():
+            _remove_made(made)
+            raise _output_error(target, exc) from None
+        beside = False  # the parent is not writable: stage inside the folder itself
+        try:
+            stage = _make_stage(real, beside)
+        except OSError as exc2:
+            raise _output_error(target, exc2) from None
+    lock = _lock(stage)
+    staged = StagedFolder(target, stage)
+    try:
+        try:
+            yield staged
+        except OutputError as exc:
+            raise _renamed(exc, staged) from None
+        try:
+            _commit(stage, real, owned, beside)
+        except OSError as exc:
+            raise _output_error(target, exc) from None
+    except BaseException:
+        _remove(stage)
+        _remove_made(made)
+        raise
+    finally:
+        if lock is not None:
+            os.close(lock)
+
+
+def _make_stage(real: Path, beside: bool) -> Path:
+    if beside:
+        stage = Path(tempfile.mkdtemp(prefix=f".{real.name}.", suffix=".part", dir=real.parent))
+    else:
+        real.mkdir(exist_ok=True)
+        stage = Path(tempfile.mkdtemp(prefix=".railvib.", suffix=".part", dir=real))
+    os.chmod(stage, _folder_mode())  # mkdtemp makes 0700; give the usual folder mode
+    return stage
+
+
+def _remove_made(made: list[Path]) -> None:
+    for path in made:  # innermost first; only folders this call made, and only if empty
+        try:
+            path.rmdir()
+        except OSError:
+            pass
+
+
+def _renamed(exc: OutputError, staged: StagedFolder) -> OutputError:
+    try:
+        return exc.with_path(staged.final(exc.path))
+    except ValueError:  # not a staged file
+        return exc
+
+
+def _commit(stage: Path, real: Path, owned: Collection[str], beside: bool) -> None:
+    """Put the staged files in place (see :func:`staged_folder`)."""
+    if beside and not os.path.lexists(real):
+        os.rename(stage, real)
+        return
+    if beside and real.is_dir() and _only_owned(real, owned) and not _contains_cwd(real):
+        os.chmod(stage, stat.S_IMODE(real.stat().st_mode))
+        if _exchange(stage, real):
+            _remove(stage)  # now the earlier set
+            return
+        aside = real.parent / f".{real.name}.{secrets.token_hex(4)}.old"
+        os.rename(real, aside)
+        os.rename(stage, real)
+        _remove(aside)
+        return
+    new = _walk_files(stage)
+    for rel in new:
+        (real / rel).parent.mkdir(parents=True, exist_ok=True)
+        os.replace(stage / rel, real / rel)
+    for rel in set(owned) - set(new):
+        stale = real / rel
+        if stale.is_file() or stale.is_symlink():
+            stale.unlink()
+    _remove(stage)
 
 
 #: leading bytes of the binary files a user may pass by mistake, and what they are
@@ -100,19 +575,90 @@ def binary_kind(data: bytes) -> str | None:
     -------
     str or None
         E.g. ``"a netCDF-4/HDF5 file (e.g. results.nc)"``, ``"a PNG image"`` or
-        ``"a binary file"``; None when `data` is UTF-8 text without NUL bytes.
+        ``"a binary file"`` (one holding NUL bytes); None for text, in any encoding:
+        :func:`read_text` says where text that is not UTF-8 is not.
     """
     for magic, kind in _MAGIC:
         if data.startswith(magic):
             return kind
     if b"\x00" in data:
         return "a binary file"
-    try:
-        data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        if exc.start < len(data) - 4:  # not merely a character cut at the end of `data`
-            return "a binary file"
     return None
+
+
+def read_text(
+    path: str | Path, field: str, what: str, *, hint: str = "", max_bytes: int = MAX_TABLE_BYTES
+) -> str:
+    """The UTF-8 text of the input file `path`; any other file is a one-line error.
+
+    Refused, each naming `path`: a file that cannot be read, a folder, a device or
+    pipe (``/dev/zero``), a file over `max_bytes`, a binary file (:func:`binary_kind`)
+    and text that is not UTF-8 (with the offset and line of the first bad byte).
+    A leading byte-order mark is dropped.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    field : str
+        The field the file is given as (``"case"``, ``"irregularity.path"``), named in
+        the error.
+    what : str
+        What the file should be, for the error (``"TOML case file"``, ``"CSV table"``).
+    hint : str
+        Where to get a good file, appended to the error for a binary file.
+    max_bytes : int
+        Largest size accepted, bytes.
+
+    Returns
+    -------
+    str
+        The text.
+
+    Raises
+    ------
+    CaseError
+        ``<field> = '<path>': a <what> ...`` saying what is wrong with the file.
+    """
+    path = Path(path)
+    tail = f"; {hint}" if hint else ""
+    try:
+        info = path.stat()  # before opening: opening a pipe would wait for a writer
+        mode = info.st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError(21, "Is a directory")
+        if not stat.S_ISREG(mode):
+            raise CaseError(field, str(path), f"a {what} (a regular file, not a device or pipe)")
+        if info.st_size > max_bytes:
+            raise _too_large(field, path, what, max_bytes, info.st_size)
+        with open(path, "rb") as fh:
+            raw = fh.read(max_bytes + 1)
+    except OSError as exc:
+        raise CaseError(field, str(path), f"a readable {what} ({exc.strerror})") from None
+    if len(raw) > max_bytes:  # it grew since stat()
+        raise _too_large(field, path, what, max_bytes, len(raw))
+    kind = binary_kind(raw[:4096])
+    if kind is not None:
+        raise CaseError(field, str(path), f"a {what}, not {kind}{tail}")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        raise CaseError(
+            field,
+            str(path),
+            f"a {what} in UTF-8 text; byte 0x{raw[exc.start]:02x} at offset {exc.start} (line "
+            f"{line}) is not UTF-8: save the file as UTF-8",
+        ) from None
+    return text.removeprefix("\ufeff")
+
+
+def _too_large(field: str, path: Path, what: str, max_bytes: int, size: int) -> CaseError:
+    return CaseError(
+        field,
+        str(path),
+        f"a {what} of at most {max_bytes / 2**20:g} MiB; this one has {size / 2**20:.3g} MiB",
+    )
 
 
 def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:
@@ -121,7 +667,7 @@ def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:
     Parameters
     ----------
     path : str or pathlib.Path
-        The file.
+        The file (UTF-8 text of at most :data:`MAX_TOML_BYTES`, see :func:`read_text`).
     field : str
         What the file is (``"case"``, ``"sweep"``), named in the error.
     hint : str
@@ -131,33 +677,70 @@ def read_toml(path: str | Path, field: str, hint: str = "") -> dict[str, Any]:
     Returns
     -------
     dict
-        The parsed tables.
+        The parsed tables (nested at most :data:`MAX_NESTING` levels deep).
 
     Raises
     ------
     CaseError
-        ``<field> = '<path>': a readable TOML file (...)``, ``a TOML <field> file, not
-        a netCDF-4/HDF5 file ...`` (or another binary kind, or an empty file) or
-        ``valid TOML (...)``.
+        ``<field> = '<path>': a readable TOML file (...)``, ``a TOML <field> file (text),
+        not a netCDF-4/HDF5 file ...`` (or another binary kind, text that is not UTF-8,
+        or an empty file), ``valid TOML (...)``, or a value nested too deep (named by
+        its dotted key).
     """
-    try:
-        raw = Path(path).read_bytes()
-    except OSError as exc:
-        raise CaseError(field, str(path), f"a readable TOML file ({exc.strerror})") from None
-    tail = f"; {hint}" if hint else ""
-    kind = binary_kind(raw[:4096])
-    if kind is not None:
-        raise CaseError(field, str(path), f"a TOML {field} file, not {kind}{tail}")
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise CaseError(field, str(path), f"a UTF-8 TOML text file ({exc.reason})") from None
+    text = read_text(path, field, f"TOML {field} file", hint=hint, max_bytes=MAX_TOML_BYTES)
     if not text.strip():
+        tail = f"; {hint}" if hint else ""
         raise CaseError(field, str(path), f"a TOML {field} file, not an empty file{tail}")
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(field, str(path), f"valid TOML ({exc})") from None
+    except RecursionError:  # arrays or inline tables some 400 levels deep
+        raise CaseError(
+            field, str(path), f"TOML nested at most {MAX_NESTING} levels deep (arrays, tables)"
+        ) from None
+    check_nesting(data, field)
+    return data
+
+
+def check_nesting(data: Any, field: str, limit: int = MAX_NESTING) -> None:
+    """Refuse tables and lists nested more than `limit` levels deep in `data`.
+
+    Validation, copies and model builders recurse into nested tables; a limit
+    well above what any case needs turns a hostile input into a one-line error
+    instead of a ``RecursionError``. The walk itself does not recurse.
+
+    Parameters
+    ----------
+    data : object
+        Parsed input (dicts, lists, tuples and scalars).
+    field : str
+        Name of `data` in errors (``"case"``).
+    limit : int
+        Deepest nesting accepted (levels below `data`).
+
+    Raises
+    ------
+    CaseError
+        Naming the dotted key where the nesting passes `limit`.
+    """
+    stack: list[tuple[Any, tuple[str, ...]]] = [(data, ())]
+    while stack:
+        node, where = stack.pop()
+        if isinstance(node, dict):
+            children = [(v, (*where, str(k))) for k, v in node.items()]
+        elif isinstance(node, list | tuple):
+            children = [(v, (*where, f"[{i}]")) for i, v in enumerate(node)]
+        else:
+            continue
+        if children and len(where) >= limit:
+            shown = ".".join(where[:8]).replace(".[", "[")
+            raise CaseError(
+                f"{shown}..." if len(where) > 8 else shown or field,
+                f"<nested deeper than {limit} levels>",
+                f"tables and lists nested at most {limit} levels deep",
+            )
+        stack.extend(children)
 
 
 def write_text(path: str | Path, text: str) -> Path:

@@ -15,7 +15,7 @@ from railvib.case import Case, build_grid, build_spectrum, build_system, case_he
 from railvib.coupling import CoupledSystem
 from railvib.errors import RailvibDeprecationWarning
 from railvib.grid import FrequencyGrid
-from railvib.io import railvib_version, write_text
+from railvib.io import railvib_version, staged_folder, write_text
 from railvib.outputs import (
     DEFAULT_OUTPUTS,
     LOSS_OF_CONTACT_NOTE,
@@ -26,7 +26,8 @@ from railvib.outputs import (
     is_linear_model_valid,
     linearity_note,
 )
-from railvib.results.dataset import build_dataset_blocks, save_csv, save_netcdf
+from railvib.plot import OVERVIEW_STEMS
+from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
 from railvib.spectra.base import SpatialSpectrum
@@ -34,6 +35,7 @@ from railvib.spectra.base import SpatialSpectrum
 __all__ = [
     "LOSS_OF_CONTACT_NOTE",
     "PSD_CSV",
+    "RUN_FILES",
     "RunOutput",
     "case_toml",
     "contact_check",
@@ -79,10 +81,17 @@ def run_system(
         See :func:`railvib.results.build_dataset` (built block by block of
         :data:`railvib.coupling.FREQUENCY_BLOCK` frequencies); with the contact check
         (``contact_force_rms``, ``loss_of_contact_probability``, ``linear_model_valid``).
+
+    Raises
+    ------
+    railvib.errors.NonFiniteResult
+        A response is NaN or infinite (parameters beyond what the solver resolves in
+        floating point, e.g. a pad stiffness of 1e300 N/m), naming the variable.
     """
     f = grid.f
-    s_r = spectrum.temporal(f, system.speed)
-    pad_k = system.track.pad.stiffness(f, system.track.pad_temperature)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
+        s_r = spectrum.temporal(f, system.speed)
+        pad_k = system.track.pad.stiffness(f, system.track.pad_temperature)
     extra = {
         "static_contact_load": xr.DataArray(
             system.vehicle.static_wheel_loads(),
@@ -106,7 +115,9 @@ def run_system(
         **(attrs or {}),
     }
     settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
-    ds = build_dataset_blocks(f, system.frf_blocks(f), s_r, attrs=meta, extra=extra)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        ds = build_dataset_blocks(f, system.frf_blocks(f), s_r, attrs=meta, extra=extra)
+    check_finite(ds)  # before the derived outputs, which assume finite PSDs
     return derive(ds, DEFAULT_OUTPUTS, settings)
 
 
@@ -235,6 +246,15 @@ class RunOutput:
 #: the PSD tables ``railvib run`` writes beside the dataset (file stem = variable)
 PSD_CSV = ("psd_acceleration", "psd_displacement", "psd_force")
 
+#: every file ``railvib run`` may write to its folder (a later run replaces them all)
+RUN_FILES = (
+    "results.nc",
+    *(f"{name}.csv" for name in PSD_CSV),
+    "summary.csv",
+    "summary.md",
+    *(f"{stem}.png" for stem in OVERVIEW_STEMS),
+)
+
 
 def run_to_folder(
     case: Case | str | Path, outdir: str | Path, *, plots: bool = True, force: bool = False
@@ -244,7 +264,11 @@ def run_to_folder(
     Writes ``results.nc``, ``psd_acceleration.csv``, ``psd_displacement.csv``,
     ``psd_force.csv``, ``summary.csv`` and ``summary.md`` (each headed by the case:
     :func:`railvib.case.case_header`, and the contact check) and, with `plots`, the
-    overview figures (:func:`railvib.plot.psd.save_overview`), each atomically.
+    overview figures (:func:`railvib.plot.psd.save_overview`). The files are written
+    into a staging folder put in place at the end (:func:`railvib.io.staged_folder`):
+    `outdir` then holds this run's complete set, an earlier run's files of
+    :data:`RUN_FILES` are replaced or removed (other files are kept), and a run that
+    fails or is stopped leaves `outdir` as it was.
 
     Parameters
     ----------
@@ -262,28 +286,38 @@ def run_to_folder(
     Returns
     -------
     RunOutput
+
+    Raises
+    ------
+    railvib.errors.CaseError
+        Bad input, or `outdir` is not a folder (before anything is computed).
+    railvib.errors.OutputError
+        `outdir` or one of its files cannot be written (read-only, full disk).
+    railvib.errors.NonFiniteResult
+        The result holds NaN or infinite values (nothing is written).
     """
     if not isinstance(case, Case):
         case = load_case(case, force=force)
-    outdir = Path(outdir)
-    ds = run(case)
-    table = summary_table(summary(ds, bands=case.output.rms_bands))
-    header = case_header(case)
-    contact = contact_line(ds)
-    contacts = [("Contact check per wheel", contact_table(ds))]
-    files = [
-        save_netcdf(ds, outdir / "results.nc"),
-        *(save_csv(ds, outdir / f"{name}.csv", variable=name) for name in PSD_CSV),
-        write_text(outdir / "summary.csv", summary_csv(table, header, [contact])),
-        write_text(
-            outdir / "summary.md",
-            summary_markdown(table, header, [contact], title=case.title, extra=contacts),
-        ),
-    ]
-    if plots:
-        from railvib.plot.psd import save_overview  # matplotlib: only when plotting
+    with staged_folder(outdir, RUN_FILES) as stage:
+        ds = run(case)
+        table = summary_table(summary(ds, bands=case.output.rms_bands))
+        header = case_header(case)
+        contact = contact_line(ds)
+        contacts = [("Contact check per wheel", contact_table(ds))]
+        files = [
+            save_netcdf(ds, stage.path / "results.nc"),
+            *(save_csv(ds, stage.path / f"{name}.csv", variable=name) for name in PSD_CSV),
+            write_text(stage.path / "summary.csv", summary_csv(table, header, [contact])),
+            write_text(
+                stage.path / "summary.md",
+                summary_markdown(table, header, [contact], title=case.title, extra=contacts),
+            ),
+        ]
+        if plots:
+            from railvib.plot.psd import save_overview  # matplotlib: only when plotting
 
-        files += save_overview(ds, outdir)
+            files += save_overview(ds, stage.path)
+    files = stage.finals(files)
     note = linearity_note(ds)
     notes = () if note is None else (note,)
     return RunOutput(ds, table, tuple(files), notes, tuple(header), contact)

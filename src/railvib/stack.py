@@ -1,7 +1,7 @@
 """Stacked small-matrix kernels: one contiguous array over the stack per matrix entry.
 
 A stack is the leading axis of every array of a solve: frequencies of one case, or
-(case, frequency) points of many cases laid end to end (``docs/design/0005-stacked-batches.md``).
+(case, frequency) points of many cases laid end to end (``docs/design/0006-stacked-batches.md``).
 Small matrices (the 4x4 wave matching, the wheel condensation, the coupled 4x4 solve)
 are held as nested lists of their entries, each entry an ``(n,)`` array over the stack
 (or ``(n, k)`` for ``k`` right-hand sides), so every operation is one elementwise pass:

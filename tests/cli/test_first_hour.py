@@ -118,7 +118,7 @@ def test_pad_fit_on_a_case_file_says_it_is_not_a_measurements_csv(tmp_path, caps
 @pytest.mark.parametrize(
     ("data", "message"),
     [
-        (HDF5, "a measurements CSV (text), not a netCDF-4/HDF5 file"),
+        (HDF5, "a measurements CSV, not a netCDF-4/HDF5 file"),
         (b"", "it is empty"),
         (b"a,b\n1,2\n", "whose header row names its columns (this one is 'a,b')"),
         (

@@ -83,7 +83,7 @@ def test_bad_toml_and_missing_file(tmp_path):
     bad.write_text("speed_kmh = = 3")
     with pytest.raises(CaseError, match="valid TOML"):
         load_case(bad)
-    with pytest.raises(CaseError, match="readable TOML file"):
+    with pytest.raises(CaseError, match="readable TOML case file"):
         load_case(tmp_path / "nope.toml")
 
 

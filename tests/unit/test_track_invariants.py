@@ -111,7 +111,9 @@ def test_propagation_constants_decay(paper_track):
 
 
 def test_invalid_track_inputs_are_named():
-    with pytest.raises(CaseError, match=r"track\.sleeper_spacing = -0\.6: must be > 0 \(m\)"):
+    with pytest.raises(
+        CaseError, match=r"track\.sleeper_spacing = -0\.6: must be > 0\.0 and <= 3\.0 \(m\)"
+    ):
         PeriodicTrack(Rail(6.62e6, 60.64), SpringDamper(5e7), -0.6)
     with pytest.raises(CaseError, match=r"track\.rail\.mass_per_length = 0\.0"):
         Rail(6.62e6, 0.0)

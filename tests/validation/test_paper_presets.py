@@ -8,9 +8,10 @@ from railvib.presets import load_preset
 
 BASE = "wang2017_metro"
 FREQDEP = ("wang2017_freqdep_20c", "wang2017_temp_m30c", "wang2017_temp_m10c", "wang2017_temp_p20c")
+PREDICTED = ("wang2017_predicted_m30c", "wang2017_predicted_m10c", "wang2017_predicted_p20c")
 
 
-@pytest.mark.parametrize("name", FREQDEP)
+@pytest.mark.parametrize("name", FREQDEP + PREDICTED)
 def test_only_pad_title_and_temperature_differ_from_base(name):
     base, other = load_preset(BASE), load_preset(name)
     for d in (base, other):

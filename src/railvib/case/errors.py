@@ -65,6 +65,12 @@ def case_error(exc: ValidationError, root: type[BaseModel] | None = None) -> Cas
         return CaseError(
             field, value, f"must be {_BOUNDS[kind]} {next(iter(ctx.values()))}{unit_txt}"
         )
+    if kind == "too_long":
+        return CaseError(
+            field,
+            f"<{ctx.get('actual_length', '?')} items>",
+            f"at most {ctx.get('max_length')} items{unit_txt}",
+        )
     if kind == "literal_error":
         expected = str(ctx.get("expected", ""))
         names = re.findall(r"'([^']*)'", expected)

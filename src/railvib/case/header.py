@@ -18,12 +18,18 @@ from railvib.units import kmh_to_ms
 __all__ = ["case_header", "describe_table"]
 
 
+#: longest list written in full; a longer one (a tabulated pad) shows its ends and length
+_LIST_IN_FULL = 6
+
+
 def _value(v: Any) -> str:
     if isinstance(v, bool):
         return str(v).lower()
     if isinstance(v, int | float):
         return f"{v:g}"
     if isinstance(v, list | tuple):
+        if len(v) > _LIST_IN_FULL:
+            return f"[{_value(v[0])}, {_value(v[1])}, ..., {_value(v[-1])}] ({len(v)} values)"
         return "[" + ", ".join(_value(x) for x in v) + "]"
     return str(v)
 

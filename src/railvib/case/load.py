@@ -11,12 +11,12 @@ import numpy as np
 from numpy.typing import NDArray
 from pydantic import ValidationError
 
-from railvib.case.build import build_grid, build_pad
+from railvib.case.build import build_grid, build_pad, build_track
 from railvib.case.errors import case_error
 from railvib.case.plausibility import check_grid_size, plausibility_warnings
 from railvib.case.schema import FAMILY_TABLES, Case
 from railvib.errors import CaseError
-from railvib.io import read_toml
+from railvib.io import check_nesting, read_toml
 from railvib.pads import PadModel
 from railvib.presets import DEFAULT_PRESET, load_preset
 from railvib.registry import merge_tables, resolve_paths
@@ -99,6 +99,7 @@ def case_from_dict(
     CaseError
         With the dotted field name, the value and what is allowed.
     """
+    check_nesting(data, "case")  # before anything recurses into it
     data = copy.deepcopy(data)
     preset = data.pop("preset", None)
     own_track = data.get("track")
@@ -181,6 +182,7 @@ def _check_models(case: Case) -> tuple[PadModel, NDArray[np.float64]]:
     for location, family in FAMILY_TABLES.items():
         family.from_dict(_table_at(data, location), ".".join(location))
     f = build_grid(case).f
+    build_track(case).check_frequencies(f)
     temperature = case.track.pad_temperature_c
     pad = build_pad(case)
     try:

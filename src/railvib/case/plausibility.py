@@ -14,6 +14,7 @@ temperature dependence).
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from typing import Any
 
@@ -23,7 +24,7 @@ from pydantic import BaseModel
 
 from railvib.case.schema import Case
 from railvib.errors import CaseError, PlausibilityWarning
-from railvib.grid import FrequencyGrid
+from railvib.grid import MAX_GRID_SIZE, FrequencyGrid
 from railvib.pads import PadModel
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "check_grid_size",
     "grid_cost",
     "grid_size",
+    "physical_memory_bytes",
     "plausibility_warnings",
 ]
 
@@ -83,13 +85,13 @@ def grid_size(case: Case) -> int:
     return FrequencyGrid.linear_size(fr.f_min, fr.f_max, fr.step)
 
 
-def grid_cost(n_frequencies: int) -> str:
+def grid_cost(n_frequencies: float) -> str:
     """What running `n_frequencies` frequencies costs, in words.
 
     Parameters
     ----------
-    n_frequencies : int
-        Grid length.
+    n_frequencies : float
+        Grid length (a count; a float where it is too large for an integer).
 
     Returns
     -------
@@ -119,29 +121,52 @@ def _grid_field(case: Case) -> tuple[str, Any]:
     return "frequency.step", case.frequency.step
 
 
+def physical_memory_bytes() -> int | None:
+    """Physical memory of this machine, bytes (None where the system does not tell)."""
+    try:
+        return int(os.sysconf("SC_PHYS_PAGES")) * int(os.sysconf("SC_PAGE_SIZE"))
+    except (AttributeError, ValueError, OSError):  # not POSIX, or no such sysconf name
+        return None
+
+
 def check_grid_size(case: Case, *, force: bool = False) -> None:
     """Refuse a grid of more than :data:`MAX_FREQUENCIES` frequencies unless `force`.
+
+    A forced grid is still refused when the memory it needs (:data:`BYTES_PER_FREQUENCY`
+    per frequency) exceeds this machine's physical memory, or when it has more than
+    :data:`railvib.grid.MAX_GRID_SIZE` frequencies: it could not run.
 
     Parameters
     ----------
     case : Case
         A validated case.
     force : bool
-        Run a grid of any size (``railvib run --force``).
+        Run a grid of any size that fits in memory (``railvib run --force``).
 
     Raises
     ------
     CaseError
         ``frequency.step`` (or ``frequency.n``) naming the grid's length, memory and time.
     """
-    n = grid_size(case)
+    field, value = _grid_field(case)
+    fr = case.frequency
+    # counted in floats: a step of 1e-300 Hz gives more frequencies than an int() can take
+    n = float(value) if fr.spacing == "log" else np.floor((fr.f_max - fr.f_min) / value + 1e-9) + 1
     if n > MAX_FREQUENCIES and not force:
-        field, value = _grid_field(case)
         raise CaseError(
             field,
             value,
-            f"a grid of at most {MAX_FREQUENCIES:,} frequencies; this one has {n:,} "
+            f"a grid of at most {MAX_FREQUENCIES:,} frequencies; this one has {n:,.0f} "
             f"({grid_cost(n)}); pass force=True (railvib run --force) to run it anyway",
+        )
+    memory = physical_memory_bytes()
+    if n > MAX_GRID_SIZE or (memory is not None and n * BYTES_PER_FREQUENCY > memory):
+        room = "" if memory is None else f" and fits in this machine's {memory / 1e9:.3g} GB"
+        raise CaseError(
+            field,
+            value,
+            f"a grid of at most {MAX_GRID_SIZE:,} frequencies{room}: this one has {n:,.0f} "
+            f"({grid_cost(n)}), too many even with --force",
         )
 
 

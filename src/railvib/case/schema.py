@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any, Literal
 
 import tomli_w
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from railvib.case.sections import Section, section_model, table_section
 from railvib.errors import CaseError
@@ -30,7 +30,62 @@ __all__ = [
     "RailSection",
     "TrackSection",
     "VehicleSection",
+    "MAX_FREQUENCY_HZ",
+    "MAX_RMS_BANDS",
+    "MAX_SPEED_KMH",
+    "check_label",
 ]
+
+#: highest frequency of a grid, Hz: 20 times the 5 kHz top of railway vibration (the rail
+#: is a beam on discrete pads; far above, its cross-section deforms)
+MAX_FREQUENCY_HZ = 1.0e5
+#: highest speed, km/h (trains in service run at up to 350 km/h, the record is 575 km/h)
+MAX_SPEED_KMH = 1000.0
+#: most RMS bands in a summary (third-octave bands from 0.1 Hz to 20 kHz are 54)
+MAX_RMS_BANDS = 200
+#: most characters of a title
+MAX_TITLE_CHARS = 500
+
+
+def check_label(field: str, value: Any, limit: int = MAX_TITLE_CHARS) -> str:
+    """`value` if it is text fit for a title or label: no control characters, at most `limit`.
+
+    Titles and labels go into netCDF attributes, Markdown, CSV and figure titles; a NUL
+    or another control character breaks those writers (a line break, a table row).
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the field, for the error.
+    value : object
+        The text.
+    limit : int
+        Most characters allowed.
+
+    Returns
+    -------
+    str
+        `value`.
+
+    Raises
+    ------
+    CaseError
+        `value` is not text, holds a control character (one of U+0000-U+001F, U+007F-U+009F
+        or a line or paragraph separator) or is longer than `limit`.
+    """
+    if not isinstance(value, str):
+        raise CaseError(field, value, "text")
+    bad = next((c for c in value if not c.isprintable() and c != " "), None)
+    if bad is not None:
+        raise CaseError(
+            field,
+            value,
+            f"text without control characters (this one holds U+{ord(bad):04X} at position "
+            f"{value.index(bad)}); write it on one line",
+        )
+    if len(value) > limit:
+        raise CaseError(field, value, f"at most {limit} characters (this one has {len(value):,})")
+    return value
 
 
 def quantity(
@@ -39,6 +94,7 @@ def quantity(
     *,
     gt: float | None = 0.0,
     ge: float | None = None,
+    le: float | None = None,
     plausible: tuple[float, float] | None = None,
     why: str = "",
     **kw: Any,
@@ -53,6 +109,8 @@ def quantity(
         One line of documentation.
     gt, ge : float, optional
         Lower bound of a legal value (in `unit`); `ge` replaces `gt`.
+    le : float, optional
+        Upper bound of a legal value (in `unit`).
     plausible : (float, float), optional
         Legal values outside this range (in `unit`) load with a
         :class:`~railvib.errors.PlausibilityWarning` (see :mod:`railvib.case.plausibility`).
@@ -71,7 +129,7 @@ def quantity(
     extra: dict[str, Any] = {"unit": unit}
     if plausible is not None:
         extra.update(plausible=plausible, plausible_why=why)
-    return Field(..., gt=gt, ge=ge, description=doc, json_schema_extra=extra, **kw)
+    return Field(..., gt=gt, ge=ge, le=le, description=doc, json_schema_extra=extra, **kw)
 
 
 #: ``[vehicle]``: the parameters of the default vehicle model, declared with it
@@ -96,27 +154,34 @@ TrackSection: Any = section_model(
 class ContactSection(Section):
     """Linearised Hertz contact, one spring per wheelset."""
 
-    contact_constant: float = quantity("m/N^(2/3)", "Hertz contact constant G")
+    contact_constant: float = quantity(
+        "m/N^(2/3)", "Hertz contact constant G", le=1e-4
+    )  # wheels are about 5e-8: 1e-4 is a contact stiffness of a few kN/m
     stiffness: float | None = Field(
         None,
         gt=0.0,
+        le=1e15,
         description="contact stiffness per wheelset; if omitted, k_H = 3/(2G) P0^(1/3) from the "
         "static wheel load P0 (and twice that in rail_pair mode)",
         json_schema_extra={"unit": "N/m"},
     )
     leading_wheel_position: float = quantity(
-        "m", "position of the leading wheel after a sleeper, in [0, d)", ge=0.0
-    )
+        "m", "position of the leading wheel after a sleeper, in [0, d)", ge=0.0, le=3.0
+    )  # d <= 3 m (track.sleeper_spacing)
 
 
 class FrequencySection(Section):
     """The frequency grid of the analysis."""
 
-    f_min: float = quantity("Hz", "lowest frequency")
-    f_max: float = quantity("Hz", "highest frequency")
+    f_min: float = quantity("Hz", "lowest frequency", le=MAX_FREQUENCY_HZ)
+    f_max: float = quantity("Hz", "highest frequency", le=MAX_FREQUENCY_HZ)
     spacing: Literal["linear", "log"] = Field("linear", description="grid spacing")
     step: float | None = Field(
-        None, gt=0.0, description="step of a linear grid", json_schema_extra={"unit": "Hz"}
+        None,
+        gt=0.0,
+        le=MAX_FREQUENCY_HZ,
+        description="step of a linear grid",
+        json_schema_extra={"unit": "Hz"},
     )
     n: int | None = Field(None, ge=2, description="number of points of a log grid")
 
@@ -140,6 +205,7 @@ class OutputSection(Section):
 
     rms_bands: list[tuple[float, float]] = Field(
         default_factory=lambda: [(0.5, 20.0), (20.0, 100.0), (100.0, 1000.0)],
+        max_length=MAX_RMS_BANDS,
         description="frequency bands [f_lo, f_hi] for the RMS in the summary",
         json_schema_extra={"unit": "Hz"},
     )
@@ -151,6 +217,16 @@ class OutputSection(Section):
         "linear_model_valid = false (railvib run --strict exits with code 3)",
         json_schema_extra={"unit": _THRESHOLD.unit},
     )
+
+    @field_validator("rms_bands", mode="before")
+    @classmethod
+    def _count(cls, value: Any) -> Any:
+        """Refuse too many bands before each is validated (10^5 bands took 10 s)."""
+        if isinstance(value, list | tuple) and len(value) > MAX_RMS_BANDS:
+            raise CaseError(
+                "output.rms_bands", f"<{len(value):,} bands>", f"at most {MAX_RMS_BANDS} bands"
+            )
+        return value
 
     @model_validator(mode="after")
     def _bands(self) -> OutputSection:
@@ -172,6 +248,7 @@ class Case(Section):
     speed_kmh: float = quantity(
         "km/h",
         "vehicle speed",
+        le=MAX_SPEED_KMH,
         plausible=(10.0, 450.0),
         why="the range of railway running speeds (trains in service run at up to 350 km/h): "
         "likely a typo or a value in another unit",
@@ -184,6 +261,11 @@ class Case(Section):
     )
     frequency: FrequencySection
     output: OutputSection = Field(default_factory=OutputSection)
+
+    @field_validator("title")
+    @classmethod
+    def _title(cls, value: str) -> str:
+        return check_label("title", value)
 
     def to_toml(self) -> str:
         """The full, resolved case as TOML text (stored with every result)."""

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import os
 import sys
+import traceback
 import warnings
 from pathlib import Path
 from typing import Any
@@ -141,8 +143,9 @@ def main(argv: list[str] | None = None) -> int:
     int
         Exit code: 0 on success, 2 for a RailvibError (bad input) or a usage error (both
         one line ``error: ...`` on stderr), 3 when ``--strict`` finds a result beyond the
-        linear model (:class:`~railvib.errors.LinearModelInvalid`), 130 when aborted, else
-        click's code.
+        linear model (:class:`~railvib.errors.LinearModelInvalid`), 130 when aborted, 2
+        for a system error no command names (standard output on a full disk), 141 when
+        standard output is a closed pipe, else click's code.
     """
     try:
         with warnings.catch_warnings():
@@ -163,7 +166,34 @@ def main(argv: list[str] | None = None) -> int:
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
+    except BrokenPipeError:  # `railvib models | head`: the reader has what it wanted
+        _stdout_to_devnull()
+        return 141  # 128 + SIGPIPE, as a killed shell tool
+    except OSError as exc:  # the summary printed to a full disk (`> /dev/full`), ...
+        click.echo(f"error: {_os_error_line(exc)}", err=True)
+        return 2
     return 0
+
+
+def _os_error_line(exc: OSError) -> str:
+    """One line for an OSError no command turned into a RailvibError (files name themselves)."""
+    reason = os.strerror(exc.errno) if exc.errno else str(exc)
+    if exc.filename is not None:
+        return f"{exc.filename}: {reason}"
+    if any(frame.name == "echo" for frame in traceback.extract_tb(exc.__traceback__)):
+        _stdout_to_devnull()
+        return f"cannot write standard output: {reason}"
+    return reason
+
+
+def _stdout_to_devnull() -> None:
+    """Point stdout at the null device, so that the exit's flush of unwritten text cannot fail."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # stdout replaced (tests) or closed
+        pass
 
 
 def _usage_line(exc: click.UsageError) -> str:

@@ -34,7 +34,8 @@ def pad() -> None:
     """Railpad models: fit master curves and pad models to measurements.
 
     Start with "railvib pad example" (writes a synthetic measurements CSV here), then
-    "railvib pad fit wj7_synthetic_0p3hz.csv --model zener --tg -40".
+    "railvib pad predict wj7_synthetic_0p3hz.csv --temperature -10" (the paper's
+    prediction) or "railvib pad fit wj7_synthetic_0p3hz.csv --model zener --tg -40".
     """
 
 
@@ -52,6 +53,8 @@ def example(multifrequency: bool, outdir: Path) -> None:
     path = write_example_data(outdir, multifrequency=multifrequency)
     click.echo(f"wrote {path} (synthetic data: see the header lines)")
     tg = "" if multifrequency else " --tg -40"
+    if not multifrequency:
+        click.echo(f"next: railvib pad predict {path} --temperature -10")
     click.echo(f"next: railvib pad fit {path} --model zener{tg}")
 
 
@@ -149,3 +152,89 @@ def fit(
     report = fit_pad_to_folder(data, outdir, job)
     click.echo(report.text)
     click.echo(f"wrote {', '.join(str(p) for p in report.files)}")
+
+
+@pad.command()
+@click.argument("data", type=click.Path(dir_okay=False, path_type=Path))
+@output_option(Path("pad-predict"))
+@click.option(
+    "--temperature",
+    type=float,
+    default=20.0,
+    show_default=True,
+    help="analysis temperature: the case's pad temperature and the master curve's reference, degC",
+)
+@click.option(
+    "--tg",
+    type=float,
+    default=None,
+    help="glass transition, degC [default: found from the loss-factor peak]",
+)
+@click.option(
+    "--frequency",
+    type=float,
+    default=None,
+    help="test frequency to use when DATA holds several, Hz",
+)
+@click.option("--no-vertical-shift", is_flag=True, help="skip the rho T / (rho0 T0) factor")
+@click.option(
+    "--expansion-coefficient",
+    type=float,
+    default=4.8e-4,
+    show_default=True,
+    help="volume expansion coefficient a_f, 1/K",
+)
+@click.option(
+    "--band",
+    default="5,1000",
+    show_default=True,
+    help="frequency band of the K(f) plot and of the log-linear fit, Hz",
+)
+@click.option(
+    "--f0",
+    type=float,
+    default=5.0,
+    show_default=True,
+    help="reference frequency f0 of the log-linear law, Hz",
+)
+@click.option(
+    "--preset",
+    default="wang2017_metro",
+    show_default=True,
+    help="preset the written case.toml starts from",
+)
+def predict(
+    data: Path,
+    outdir: Path,
+    temperature: float,
+    tg: float | None,
+    frequency: float | None,
+    no_vertical_shift: bool,
+    expansion_coefficient: float,
+    band: str,
+    f0: float,
+    preset: str,
+) -> None:
+    """Predict K*(f, T) from a one-frequency temperature sweep in DATA.csv (the paper's 3.2).
+
+    Tg from the loss-factor peak, universal WLF constants at Tg re-referenced to
+    --temperature, vertical factor, master curve. Writes to OUTPUT: pad.toml (the
+    [track.pad] table and the pad temperature), case.toml (runnable: railvib run
+    OUTPUT/case.toml) and three plots (cf. the paper's Figs. 6-8).
+    """
+    from railvib.padfit import PadPredictJob, predict_pad_to_folder
+
+    job = PadPredictJob(
+        temperature_c=temperature,
+        glass_transition_c=tg,
+        frequency_hz=frequency,
+        vertical_shift=not no_vertical_shift,
+        expansion_coefficient_per_k=expansion_coefficient,
+        band_hz=tuple(_floats(band, "--band")),  # type: ignore[arg-type]
+        f0_hz=f0,
+        preset=preset,
+    )
+    report = predict_pad_to_folder(data, outdir, job)
+    click.echo(report.text)
+    click.echo(f"wrote {', '.join(str(p) for p in report.files)}")
+    click.echo(f"next: railvib run {outdir / 'case.toml'} -o {outdir / 'run'}")

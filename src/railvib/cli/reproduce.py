@@ -28,6 +28,7 @@ def reproduce(outdir: Path, quiet: bool) -> None:
 
     from railvib.reproduce import n_steps
     from railvib.reproduce import reproduce as run_study
+    from railvib.reproduce.table import summary_line
 
     console = Console(stderr=True)
     with Progress(
@@ -40,15 +41,13 @@ def reproduce(outdir: Path, quiet: bool) -> None:
         transient=False,
     ) as bar:
         task = bar.add_task("running the cases", total=n_steps())
-        out = run_study(outdir, progress=lambda msg: bar.update(task, advance=1, description=msg))
+        try:
+            out = run_study(outdir, progress=lambda m: bar.update(task, advance=1, description=m))
+        except BaseException:
+            bar.live.transient = True  # the error is the one line shown, not a stopped bar
+            raise
     if quiet:
         return
-    table = out.table
-    claims = table[table["claim_holds"] != ""]
-    held = int((claims["claim_holds"] == "yes").sum())
-    click.echo(
-        f"{len(table)} paper numbers compared; {held}/{len(claims)} qualitative findings hold; "
-        f"{out.seconds:.1f} s"
-    )
+    click.echo(f"{summary_line(out.table)}; {out.seconds:.1f} s")
     click.echo(f"report: {out.outdir / 'report.html'}")
     click.echo(f"table:  {out.outdir / 'paper_comparison.md'}")

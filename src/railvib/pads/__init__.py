@@ -4,7 +4,9 @@ Models (all :class:`PadModel`): :class:`SpringDamper`, :class:`Hysteretic`,
 :class:`LogLinear`, :class:`ConstantPhase`, :class:`FractionalZener`,
 :class:`GeneralizedMaxwell`, and :class:`TemperatureShifted` (any of them plus
 time-temperature superposition with a :class:`WLF` law). Build them from case-file
-tables with :func:`pad_from_dict`; fit them to measurements with :func:`fit_pad`.
+tables with :func:`pad_from_dict`; fit them to measurements with :func:`fit_pad`;
+predict one from a single-frequency temperature sweep with :func:`predict_pad` (the
+paper's section 3.2).
 """
 
 from railvib.pads.base import PADS, PASSIVITY_TOLERANCE, FitStart, PadModel
@@ -30,6 +32,13 @@ from railvib.pads.io import (
     pad_toml,
     read_measurements_csv,
     wj7_example_csv,
+)
+from railvib.pads.predict import (
+    PadPrediction,
+    hysteresis_loop,
+    loss_factor_peak,
+    predict_pad,
+    single_frequency_sweep,
 )
 from railvib.pads.simple import ConstantPhase, Hysteretic, LogLinear, SpringDamper
 from railvib.pads.tabulated import TabulatedPad
@@ -64,6 +73,7 @@ __all__ = [
     "Measurements",
     "ModelFit",
     "PadModel",
+    "PadPrediction",
     "SpringDamper",
     "TabulatedPad",
     "TemperatureShifted",
@@ -73,11 +83,15 @@ __all__ = [
     "fit_model",
     "fit_pad",
     "fittable_models",
+    "hysteresis_loop",
     "load_pad_toml",
+    "loss_factor_peak",
     "pad_from_dict",
     "pad_to_dict",
     "pad_toml",
+    "predict_pad",
     "read_measurements_csv",
+    "single_frequency_sweep",
     "vertical_shift_factor",
     "wj7_example_csv",
 ]

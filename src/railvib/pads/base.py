@@ -35,7 +35,26 @@ _SHARED = {
     temperature ignore it.""",
 }
 
-__all__ = ["PADS", "PASSIVITY_TOLERANCE", "FitStart", "PadModel"]
+__all__ = [
+    "MAX_DAMPING_NS_PER_M",
+    "MAX_RELAXATION_TIME_S",
+    "MAX_STIFFNESS_N_PER_M",
+    "PADS",
+    "PASSIVITY_TOLERANCE",
+    "FitStart",
+    "PadModel",
+]
+
+# Hard bounds of every pad model's parameters: about a million times any railpad's value
+# (pads are 1e7-1e9 N/m, 1e3-2e5 N s/m, relaxation times below 1 s), so that no pad and
+# no fit is refused, while every stiffness stays finite, also at a reduced frequency
+# f a_T of up to 1e105 Hz (railvib.pads.tts.MAX_LOG10_SHIFT). Values beyond are typos.
+#: largest stiffness parameter of a pad model, N/m (1e9 kN/mm)
+MAX_STIFFNESS_N_PER_M = 1e15
+#: largest viscous damping parameter of a pad model, N s/m
+MAX_DAMPING_NS_PER_M = 1e12
+#: largest relaxation time of a pad model, s (about 300 years)
+MAX_RELAXATION_TIME_S = 1e10
 
 #: loss stiffness taken as round-off by :meth:`PadModel.check_passive`, relative to |K*|.
 #: ``K*`` is evaluated in double precision by a few operations (a complex power, a

@@ -28,10 +28,12 @@ from railvib.registry import declared_parameters
 
 __all__ = [
     "FITTABLE_MODELS",
+    "MAX_PRONY_TERMS",
     "LogLinearFit",
     "MasterCurve",
     "ModelFit",
     "build_master_curve",
+    "check_n_terms",
     "fit_free_shifts",
     "fit_log_linear",
     "fit_model",
@@ -40,6 +42,31 @@ __all__ = [
 ]
 
 _F = NDArray[np.float64]
+
+#: most Prony branches of a fit (two per decade over 25 decades of reduced frequency)
+MAX_PRONY_TERMS = 50
+
+
+def check_n_terms(n_terms: int | None, field: str = "n_terms") -> None:
+    """Refuse a number of Prony branches that is not an integer from 1 to :data:`MAX_PRONY_TERMS`.
+
+    Parameters
+    ----------
+    n_terms : int, optional
+        Number of branches (None: chosen from the data).
+    field : str
+        Name of the value in the error (``"pad_fit.n_terms (--n-terms)"``).
+
+    Raises
+    ------
+    CaseError
+        Naming `field`, the value and the range.
+    """
+    if n_terms is None:
+        return
+    whole = isinstance(n_terms, int | np.integer) and not isinstance(n_terms, bool)
+    if not (whole and 1 <= n_terms <= MAX_PRONY_TERMS):
+        raise CaseError(field, n_terms, f"an integer from 1 to {MAX_PRONY_TERMS} (branches)")
 
 
 @dataclass(frozen=True, eq=False)
@@ -410,6 +437,7 @@ def fit_model(
     -------
     ModelFit
     """
+    check_n_terms(n_terms)
     name = model
     f = np.asarray(frequency_hz, dtype=float).ravel()
     k = np.asarray(stiffness_n_per_m, dtype=complex).ravel()

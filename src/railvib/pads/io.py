@@ -8,7 +8,6 @@ An optional ``tts`` sub-table wraps the model in :class:`~railvib.pads.tts.Tempe
 from __future__ import annotations
 
 import csv
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
@@ -19,8 +18,8 @@ import numpy as np
 import tomli_w
 from numpy.typing import NDArray
 
-from railvib.errors import CaseError, did_you_mean
-from railvib.io import binary_kind
+from railvib.errors import CaseError, did_you_mean, excerpt
+from railvib.io import MAX_TABLE_BYTES, read_text, read_toml
 from railvib.pads.base import PADS, PadModel
 from railvib.pads.tts import TemperatureShifted, tts_to_dict
 
@@ -111,8 +110,7 @@ def load_pad_toml(path: str | Path, table: str = "track.pad") -> PadModel:
     table : str
         Dotted name of the pad table.
     """
-    with open(path, "rb") as fh:
-        doc: Any = tomllib.load(fh)
+    doc: Any = read_toml(path, "pad", "`railvib pad fit` writes one")
     for part in table.split("."):
         if not isinstance(doc, Mapping) or part not in doc:
             raise CaseError(table, str(path), "the file must contain this table")
@@ -206,26 +204,20 @@ def read_measurements_csv(path: str | Path) -> Measurements:
     Raises
     ------
     CaseError
-        ``data = '<path>': ...`` for a file that is unreadable, binary, not a CSV of
-        these columns (e.g. a case file) or has no data row; ``data.<column>`` for an
-        unknown, repeated or non-numeric column.
+        ``data = '<path>': ...`` for a file that :func:`railvib.io.read_text` refuses
+        (unreadable, not a regular file, over :data:`railvib.io.MAX_TABLE_BYTES`, binary,
+        not UTF-8), that is not a CSV of these columns (e.g. a case file) or has no data
+        row; ``data.<column>`` for an unknown, repeated or non-numeric column.
     """
     path = Path(path)
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise CaseError("data", str(path), f"a readable CSV file ({exc.strerror})") from None
-    kind = binary_kind(raw[:4096])
-    if kind is not None:
-        raise CaseError(
-            "data", str(path), f"a measurements CSV (text), not {kind}; {_EXAMPLE_HINT}"
-        )
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise CaseError("data", str(path), f"a UTF-8 CSV text file ({exc.reason})") from None
+    text = read_text(
+        path, "data", "measurements CSV", hint=_EXAMPLE_HINT, max_bytes=MAX_TABLE_BYTES
+    )
     lines = text.splitlines()
-    rows = [r for r in csv.reader(lines) if r and not r[0].lstrip().startswith("#")]
+    try:
+        rows = [r for r in csv.reader(lines) if r and not r[0].lstrip().startswith("#")]
+    except csv.Error as exc:
+        raise CaseError("data", str(path), f"a measurements CSV ({exc})") from None
     if not rows:
         raise CaseError(
             "data", str(path), f"a measurements CSV with columns {EXPECTED_COLUMNS}; it is empty"
@@ -238,7 +230,7 @@ def read_measurements_csv(path: str | Path) -> Measurements:
         what = (
             "not a TOML file (a case file?)"
             if first.startswith("[") or "=" in first.split(",")[0]
-            else f"whose header row names its columns (this one is {first[:40]!r})"
+            else f"whose header row names its columns (this one is {excerpt(first, 24)!r})"
         )
         raise CaseError(
             "data",

@@ -8,7 +8,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.pads.base import PADS, FitStart, PadModel
+from railvib.pads.base import (
+    MAX_DAMPING_NS_PER_M,
+    MAX_STIFFNESS_N_PER_M,
+    PADS,
+    FitStart,
+    PadModel,
+)
 from railvib.registry import parameter
 
 __all__ = ["ConstantPhase", "Hysteretic", "LogLinear", "SpringDamper"]
@@ -53,10 +59,16 @@ class SpringDamper(PadModel):
     """
 
     stiffness_n_per_m: float = parameter(
-        "N/m", "spring stiffness k", gt=0.0, typical=_K_TYPICAL, log=True
+        "N/m", "spring stiffness k", gt=0.0, le=MAX_STIFFNESS_N_PER_M, typical=_K_TYPICAL, log=True
     )
     damping_ns_per_m: float = parameter(
-        "N s/m", "viscous damping c", default=0.0, ge=0.0, typical=_C_TYPICAL, log=True
+        "N s/m",
+        "viscous damping c",
+        default=0.0,
+        ge=0.0,
+        le=MAX_DAMPING_NS_PER_M,
+        typical=_C_TYPICAL,
+        log=True,
     )
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
@@ -91,13 +103,14 @@ class Hysteretic(PadModel):
     """
 
     stiffness_n_per_m: float = parameter(
-        "N/m", "storage stiffness k", gt=0.0, typical=_K_TYPICAL, log=True
+        "N/m", "storage stiffness k", gt=0.0, le=MAX_STIFFNESS_N_PER_M, typical=_K_TYPICAL, log=True
     )
     loss_factor_: float = parameter(
         "-",
         "loss factor eta, frequency-independent",
         key="loss_factor",
         ge=0.0,
+        le=100.0,
         typical=(0.02, 0.6),
     )
 
@@ -144,16 +157,32 @@ class LogLinear(PadModel):
     """
 
     k0_n_per_m: float = parameter(
-        "N/m", "initial stiffness K0 at f0", gt=0.0, typical=_K_TYPICAL, log=True
+        "N/m",
+        "initial stiffness K0 at f0",
+        gt=0.0,
+        le=MAX_STIFFNESS_N_PER_M,
+        typical=_K_TYPICAL,
+        log=True,
     )
     f0_hz: float = parameter(
-        "Hz", "reference frequency f0", default=5.0, gt=0.0, typical=(1.0, 10.0)
+        "Hz", "reference frequency f0", default=5.0, ge=1e-6, le=1e6, typical=(1.0, 10.0)
     )
     exponent: float = parameter(
-        "-", "log-log slope kappa of K' against f", default=0.07, ge=0.0, typical=(0.0, 0.2)
+        "-",
+        "log-log slope kappa of K' against f",
+        default=0.07,
+        ge=0.0,
+        le=1.0,
+        typical=(0.0, 0.2),
     )
     damping_ns_per_m: float = parameter(
-        "N s/m", "viscous damping c", default=0.0, ge=0.0, typical=_C_TYPICAL, log=True
+        "N s/m",
+        "viscous damping c",
+        default=0.0,
+        ge=0.0,
+        le=MAX_DAMPING_NS_PER_M,
+        typical=_C_TYPICAL,
+        log=True,
     )
     hold_below_f0: bool = parameter("", "hold K' = K0 below f0", default=True)
 
@@ -199,9 +228,11 @@ class ConstantPhase(PadModel):
         kappa, 0 <= kappa < 1.
     """
 
-    k0_n_per_m: float = parameter("N/m", "modulus |K*| at f0", gt=0.0, typical=_K_TYPICAL, log=True)
+    k0_n_per_m: float = parameter(
+        "N/m", "modulus |K*| at f0", gt=0.0, le=MAX_STIFFNESS_N_PER_M, typical=_K_TYPICAL, log=True
+    )
     f0_hz: float = parameter(
-        "Hz", "reference frequency f0", default=5.0, gt=0.0, typical=(1.0, 10.0)
+        "Hz", "reference frequency f0", default=5.0, ge=1e-6, le=1e6, typical=(1.0, 10.0)
     )
     exponent: float = parameter(
         "-", "log-log slope kappa of |K*|", default=0.07, ge=0.0, lt=1.0, typical=(0.02, 0.2)

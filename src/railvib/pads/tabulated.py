@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
-from railvib.pads.base import PADS, PadModel
+from railvib.pads.base import MAX_STIFFNESS_N_PER_M, PADS, PadModel
 from railvib.registry import parameter
 
 __all__ = ["TabulatedPad"]
@@ -34,13 +34,13 @@ class TabulatedPad(PadModel):
     """
 
     frequency_hz: tuple[float, ...] = parameter(
-        "Hz", "frequencies, strictly increasing, at least 2", gt=0.0
+        "Hz", "frequencies, strictly increasing, at least 2", gt=0.0, le=1e30
     )
     storage_n_per_m: tuple[float, ...] = parameter(
-        "N/m", "storage stiffness K' at each frequency", gt=0.0
+        "N/m", "storage stiffness K' at each frequency", gt=0.0, le=MAX_STIFFNESS_N_PER_M
     )
     loss_n_per_m: tuple[float, ...] = parameter(
-        "N/m", "loss stiffness K'' at each frequency", ge=0.0
+        "N/m", "loss stiffness K'' at each frequency", ge=0.0, le=MAX_STIFFNESS_N_PER_M
     )
 
     def validate(self) -> None:

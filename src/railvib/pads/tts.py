@@ -27,6 +27,7 @@ from railvib.units import celsius_to_kelvin
 
 __all__ = [
     "DEFAULT_EXPANSION_COEFFICIENT_PER_K",
+    "MAX_LOG10_SHIFT",
     "UNIVERSAL_C1",
     "UNIVERSAL_C2_K",
     "WLF",
@@ -48,6 +49,12 @@ DEFAULT_EXPANSION_COEFFICIENT_PER_K = 4.8e-4
 WLF_SPAN_ABOVE_TG_K = 100.0
 #: Half-width of the trusted window about the reference temperature when Tg is unknown, K.
 WLF_WINDOW_WITHOUT_TG_K = 80.0
+#: Largest |log10 a_T| a temperature may give (decades). Measured master curves span 10-20
+#: decades; at 100, the reduced frequency f a_T of any grid frequency (<= 1e5 Hz) stays
+#: below 1e105 and its square (Maxwell branches, complex division) below 1e210, within
+#: float64 (1.8e308). Nearer to the WLF singularity T0 - C2 (within 7.7 K for the
+#: universal constants), a_T and the pad's stiffness overflow to inf and nan.
+MAX_LOG10_SHIFT = 100.0
 
 
 @dataclass(frozen=True)
@@ -101,7 +108,22 @@ class WLF:
         """``T0 - C2`` in degC, where the WLF denominator vanishes."""
         return self.reference_temperature_c - self.c2_k
 
+    @property
+    def temperature_limits_c(self) -> tuple[float, float]:
+        """``(T_lo, T_hi)`` in degC between which ``|log10 a_T| <= MAX_LOG10_SHIFT``.
+
+        From ``log10 a_T = L`` at ``T - T0 = -L C2 / (C1 + L)``: ``T_lo`` for
+        ``L = MAX_LOG10_SHIFT`` (just above the singularity ``T0 - C2``); ``T_hi`` for
+        ``L = -MAX_LOG10_SHIFT``, infinite when ``C1 <= MAX_LOG10_SHIFT`` (``log10 a_T``
+        tends to ``-C1`` as T grows).
+        """
+        big = MAX_LOG10_SHIFT
+        t0, c1, c2 = self.reference_temperature_c, self.c1, self.c2_k
+        hi = t0 + big * c2 / (c1 - big) if c1 > big else np.inf
+        return t0 - big * c2 / (c1 + big), float(hi)
+
     def _check_temperature(self, temperature_c: NDArray[np.float64], field: str) -> None:
+        """Refuse temperatures at or below the singularity, checked in degC as given."""
         bad = ~np.isfinite(temperature_c) | (temperature_c <= self.singular_temperature_c)
         if np.any(bad):
             value = float(temperature_c.ravel()[np.flatnonzero(bad.ravel())[0]])
@@ -130,10 +152,38 @@ class WLF:
         numpy.ndarray
             ``log10 a_T``, same shape as `temperature_c`.
         """
-        t_k = celsius_to_kelvin(np.asarray(temperature_c, dtype=float))
-        self._check_temperature(t_k - celsius_to_kelvin(0.0), field)
-        dt = t_k - celsius_to_kelvin(self.reference_temperature_c)
-        return -self.c1 * dt / (self.c2_k + dt)
+        t = np.asarray(temperature_c, dtype=float)
+        self._check_temperature(t, field)  # in degC: no round trip through kelvin
+        dt = t - self.reference_temperature_c
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            log_a = -self.c1 * dt / (self.c2_k + dt)
+        self._check_shift(t, log_a, field)
+        return np.asarray(log_a, dtype=np.float64)
+
+    def _check_shift(
+        self, temperature_c: NDArray[np.float64], log_a: NDArray[np.float64], field: str
+    ) -> None:
+        """Refuse temperatures whose ``|log10 a_T|`` passes :data:`MAX_LOG10_SHIFT`."""
+        bad = ~(np.abs(log_a) <= MAX_LOG10_SHIFT)  # nan and inf too
+        if not np.any(bad):
+            return
+        i = int(np.flatnonzero(bad.ravel())[0])
+        value, shift = float(temperature_c.ravel()[i]), float(np.ravel(log_a)[i])
+        lo, hi = self.temperature_limits_c
+        where = (
+            f"above {lo:.6g} degC: nearer to T0 - C2 = {self.singular_temperature_c:.4g} degC, "
+            "where WLF"
+            if value < self.reference_temperature_c
+            else f"below {hi:.6g} degC: beyond, WLF"
+        )
+        raise CaseError(
+            field,
+            value,
+            f"must be {where} (C1 = {self.c1:.4g}, C2 = {self.c2_k:.4g} K, T0 = "
+            f"{self.reference_temperature_c:.4g} degC) is singular or shifts by more than "
+            f"{MAX_LOG10_SHIFT:g} decades (|log10 a_T| = {abs(shift):.4g}): a_T and the pad's "
+            "stiffness would overflow",
+        )
 
     def shift_factor(self, temperature_c: ArrayLike) -> NDArray[np.float64]:
         """``a_T`` (dimensionless) at temperatures in degC.
@@ -176,9 +226,7 @@ class WLF:
         -------
         WLF
         """
-        self._check_temperature(
-            np.asarray(reference_temperature_c, dtype=float), "reference_temperature_c"
-        )
+        self.log_shift(reference_temperature_c, field="reference_temperature_c")
         delta = reference_temperature_c - self.reference_temperature_c
         return WLF(
             self.c1 * self.c2_k / (self.c2_k + delta),
@@ -316,9 +364,26 @@ class TemperatureShifted(PadModel):
         return self.wlf.rereferenced(self.reference_temperature_c)
 
     def shift(self, temperature_c: float) -> tuple[float, float]:
-        """Return ``(a_T, v(T))``, both dimensionless, at `temperature_c` in degC."""
-        a_t = float(self.wlf.shift_factor(temperature_c))
-        a_ref = float(self.wlf.shift_factor(self.reference_temperature_c))
+        """Return ``(a_T, v(T))``, both dimensionless, at `temperature_c` in degC.
+
+        ``a_T`` is relative to `reference_temperature_c`; its ``|log10 a_T|`` is at most
+        :data:`MAX_LOG10_SHIFT` (else a :class:`~railvib.errors.CaseError` names the
+        temperature), as is the shift about the WLF law's own reference.
+
+        Parameters
+        ----------
+        temperature_c : float
+            Pad temperature T, degC.
+
+        Returns
+        -------
+        (float, float)
+            ``a_T`` and ``v(T)`` (1 without `vertical_shift`), both dimensionless.
+        """
+        t = np.asarray(float(temperature_c))
+        log_a = self.wlf.log_shift(t) - self.wlf.log_shift(self.reference_temperature_c)
+        self.wlf_at_reference._check_shift(t, log_a, "temperature")
+        a_t = float(10.0**log_a)
         v = (
             float(
                 vertical_shift_factor(
@@ -328,7 +393,7 @@ class TemperatureShifted(PadModel):
             if self.vertical_shift
             else 1.0
         )
-        return a_t / a_ref, v
+        return a_t, v
 
     def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
         """``v(T) K*_ref(f a_T)`` in N/m; `temperature` in degC (None: the reference)."""
@@ -342,21 +407,30 @@ class TemperatureShifted(PadModel):
 #: keys of a pad's optional ``[... .tts]`` table (time-temperature superposition)
 TTS_PARAMETERS: tuple[Parameter, ...] = (
     Parameter(
-        "reference_temperature_c", "degC", "temperature at which the pad model describes the pad"
+        "reference_temperature_c",
+        "degC",
+        "temperature at which the pad model describes the pad",
+        gt=-273.15,
+        le=1000.0,
     ),
     Parameter(
         "glass_transition_c",
         "degC",
         "glass transition Tg: universal WLF constants C1 = 17.44, C2 = 51.6 K at Tg",
         default=None,
+        gt=-273.15,
+        le=1000.0,
     ),
-    Parameter("c1", "-", "WLF C1 (with c2_k)", default=None),
-    Parameter("c2_k", "K", "WLF C2 (with c1)", default=None),
+    # C1 and C2 of polymers are about 10-50 and 20-200 K (universal: 17.44, 51.6 K)
+    Parameter("c1", "-", "WLF C1 (with c2_k)", default=None, gt=0.0, le=1e3),
+    Parameter("c2_k", "K", "WLF C2 (with c1)", default=None, gt=0.0, le=1e4),
     Parameter(
         "wlf_reference_temperature_c",
         "degC",
         "temperature at which c1 and c2_k apply (default: reference_temperature_c)",
         default=None,
+        gt=-273.15,
+        le=1000.0,
     ),
     Parameter(
         "vertical_shift",
@@ -370,6 +444,8 @@ TTS_PARAMETERS: tuple[Parameter, ...] = (
         "1/K",
         "volume expansion coefficient a_f of the vertical factor",
         default=DEFAULT_EXPANSION_COEFFICIENT_PER_K,
+        ge=0.0,
+        le=1e-2,  # elastomers: about 5e-4; 1e-2 halves the density over 100 K
     ),
 )
 

@@ -12,7 +12,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
-from railvib.pads.base import PADS, FitStart, PadModel
+from railvib.pads.base import (
+    MAX_RELAXATION_TIME_S,
+    MAX_STIFFNESS_N_PER_M,
+    PADS,
+    FitStart,
+    PadModel,
+)
 from railvib.registry import parameter
 
 __all__ = ["FractionalZener", "GeneralizedMaxwell"]
@@ -42,16 +48,24 @@ class FractionalZener(PadModel):
     """
 
     k0_n_per_m: float = parameter(
-        "N/m", "relaxed (low-frequency) stiffness K0", gt=0.0, typical=(1e7, 1e8), log=True
+        "N/m",
+        "relaxed (low-frequency) stiffness K0",
+        gt=0.0,
+        le=MAX_STIFFNESS_N_PER_M,
+        typical=(1e7, 1e8),
+        log=True,
     )
     k_inf_n_per_m: float = parameter(
         "N/m",
         "unrelaxed (high-frequency) stiffness K_inf, >= K0",
         gt=0.0,
+        le=MAX_STIFFNESS_N_PER_M,
         typical=(2e8, 1e9),
         log=True,
     )
-    tau_s: float = parameter("s", "relaxation time tau", gt=0.0, typical=(1e-6, 1e-2), log=True)
+    tau_s: float = parameter(
+        "s", "relaxation time tau", gt=0.0, le=MAX_RELAXATION_TIME_S, typical=(1e-6, 1e-2), log=True
+    )
     alpha: float = parameter(
         "-",
         "fractional order",
@@ -104,9 +118,15 @@ class GeneralizedMaxwell(PadModel):
         Branch relaxation times tau_i, s (each > 0), same length as `k_n_per_m`.
     """
 
-    k_inf_n_per_m: float = parameter("N/m", "equilibrium (zero-frequency) stiffness", gt=0.0)
-    k_n_per_m: tuple[float, ...] = parameter("N/m", "branch stiffnesses K_i", ge=0.0)
-    tau_s: tuple[float, ...] = parameter("s", "branch relaxation times tau_i", gt=0.0)
+    k_inf_n_per_m: float = parameter(
+        "N/m", "equilibrium (zero-frequency) stiffness", gt=0.0, le=MAX_STIFFNESS_N_PER_M
+    )
+    k_n_per_m: tuple[float, ...] = parameter(
+        "N/m", "branch stiffnesses K_i", ge=0.0, le=MAX_STIFFNESS_N_PER_M
+    )
+    tau_s: tuple[float, ...] = parameter(
+        "s", "branch relaxation times tau_i", gt=0.0, le=MAX_RELAXATION_TIME_S
+    )
 
     @classmethod
     def fit_starts(

@@ -5,7 +5,26 @@ This package module loads no matplotlib; its submodules do.
 
 from railvib.labels import rail_label
 
-__all__ = ["DEFAULT_SWEEP_RESPONSES"]
+__all__ = ["DEFAULT_SWEEP_RESPONSES", "OVERVIEW_GROUPS", "OVERVIEW_STEMS"]
 
 #: responses drawn by :func:`railvib.plot.sweep.save_sweep_plots` when none is given
 DEFAULT_SWEEP_RESPONSES = ("carbody.bounce", "wheelset1.bounce", rail_label(1))
+
+#: (file stem, title, responses) of the response figures written by ``railvib run``
+OVERVIEW_GROUPS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
+    ("psd_carbody", "Car body", ("carbody.bounce",)),
+    ("psd_bogie", "Bogies", ("bogie1.bounce", "bogie2.bounce")),
+    ("psd_wheelset", "Wheelsets", tuple(f"wheelset{i}.bounce" for i in range(1, 5))),
+    ("psd_rail", "Rail under the wheels", tuple(rail_label(i) for i in range(1, 5))),
+    ("psd_pitch", "Pitch", ("carbody.pitch", "bogie1.pitch", "bogie2.pitch")),
+)
+
+#: the file stems of every figure :func:`railvib.plot.psd.save_overview` may write (the
+#: groups, then the contact forces, the irregularity and the pad), known without
+#: matplotlib (``railvib run`` replaces an earlier run's figures with its own)
+OVERVIEW_STEMS = (
+    *(stem for stem, _, _ in OVERVIEW_GROUPS),
+    "psd_force",
+    "irregularity_psd",
+    "pad_stiffness",
+)

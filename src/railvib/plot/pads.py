@@ -1,4 +1,4 @@
-"""Railpad plots: master curve with shifted data, and K(f) at several temperatures.
+"""Railpad plots: master curve, K(f) at several temperatures, a temperature sweep, loops.
 
 Plot functions take data already computed (no physics here), draw on the given axes
 (created when None) and return them. Stiffness is drawn in kN/mm, the edge unit.
@@ -6,15 +6,23 @@ Plot functions take data already computed (no physics here), draw on the given a
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.ticker import FuncFormatter
 from numpy.typing import ArrayLike
 
 from railvib.pads.fit import MasterCurve
+from railvib.pads.io import Measurements
+from railvib.plot.axes import log_axis
 
-__all__ = ["plot_master_curve", "plot_stiffness_vs_frequency"]
+__all__ = [
+    "plot_hysteresis_loops",
+    "plot_master_curve",
+    "plot_stiffness_vs_frequency",
+    "plot_temperature_sweep",
+]
 
 _KN_PER_MM = 1e6  # N/m
 
@@ -68,8 +76,8 @@ def plot_master_curve(
             k = np.asarray(curve_stiffness_n_per_m)
             part = k.real if ax is ax_s else k.imag
             ax.plot(curve_frequency_hz, part / _KN_PER_MM, "k-", lw=1.2, label=curve_label)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
+        log_axis(ax, "x")
+        log_axis(ax, "y")
         ax.set_ylabel(f"{name} [kN/mm]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize="small")
@@ -121,11 +129,106 @@ def plot_stiffness_vs_frequency(
         _, ax = plt.subplots(figsize=(7, 4))
     for temp, k in sorted(stiffness_by_temperature.items()):
         ax.plot(frequency_hz, get(np.asarray(k)), label=f"{temp:g} °C")
-    ax.set_xscale("log")
+    log_axis(ax, "x")
     if quantity != "loss_factor":
-        ax.set_yscale("log")
+        log_axis(ax, "y")
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel(ylabel)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize="small", title="temperature")
+    return ax
+
+
+def plot_temperature_sweep(
+    sweep: Measurements,
+    glass_transition_c: float | None = None,
+    *,
+    axes: tuple[Axes, Axes] | None = None,
+    title: str = "",
+) -> tuple[Axes, Axes]:
+    """Storage stiffness and loss factor against temperature at one frequency (the seed's Fig. 7).
+
+    Parameters
+    ----------
+    sweep : Measurements
+        One frequency, one row per temperature (degC), ``K'`` and ``K''`` in N/m.
+    glass_transition_c : float, optional
+        Tg (degC), marked on both panels.
+    axes : (Axes, Axes), optional
+        Axes for ``K'`` and the loss factor; a new two-panel figure when None.
+    title : str
+        Title of the upper panel (e.g. where the data come from).
+
+    Returns
+    -------
+    (matplotlib.axes.Axes, matplotlib.axes.Axes)
+    """
+    if axes is None:  # for interactive use: a pyplot figure, in the user's backend
+        import matplotlib.pyplot as plt
+
+        _, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    ax_k, ax_e = axes
+    t = sweep.temperature_c
+    f = float(sweep.frequency_hz[0])
+    ax_k.plot(t, sweep.storage_n_per_m / _KN_PER_MM, "o-", ms=4, color="tab:blue")
+    ax_k.set_yscale("log")
+    plain = FuncFormatter(lambda v, _pos: f"{v:g}")
+    ax_k.yaxis.set_major_formatter(plain)
+    ax_k.yaxis.set_minor_formatter(plain)
+    ax_k.tick_params(axis="y", which="minor", labelsize="x-small")
+    ax_k.set_ylabel(f"storage stiffness K' at {f:g} Hz [kN/mm]")
+    ax_e.plot(t, sweep.loss_n_per_m / sweep.storage_n_per_m, "o-", ms=4, color="tab:red")
+    ax_e.set_ylabel(f"loss factor η at {f:g} Hz [-]")
+    ax_e.set_xlabel("temperature [°C]")
+    if glass_transition_c is not None:
+        for ax in axes:
+            ax.axvline(glass_transition_c, color="0.4", ls="--", lw=1.0)
+        ax_e.annotate(
+            f"Tg = {glass_transition_c:.1f} °C",
+            (glass_transition_c, 0.5),
+            xycoords=("data", "axes fraction"),
+            xytext=(5, 0),
+            textcoords="offset points",
+            fontsize="small",
+        )
+    for ax in axes:
+        ax.grid(True, which="both", alpha=0.3)
+    if title:
+        ax_k.set_title(title, fontsize="medium")
+    return ax_k, ax_e
+
+
+def plot_hysteresis_loops(
+    loops: Sequence[tuple[str, ArrayLike, ArrayLike]],
+    *,
+    colors: Sequence[str] | None = None,
+    ax: Axes | None = None,
+) -> Axes:
+    """Force-displacement loops (the seed's Fig. 6), displacement in mm and force in kN.
+
+    Parameters
+    ----------
+    loops : sequence of (str, array_like, array_like)
+        ``(label, displacement m, force N)`` of each loop (e.g.
+        :func:`railvib.pads.hysteresis_loop`).
+    colors : sequence of str, optional
+        A matplotlib colour per loop (default: the colour cycle).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:  # for interactive use: a pyplot figure, in the user's backend
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(figsize=(6, 4.5))
+    for i, (label, x, force) in enumerate(loops):
+        color = None if colors is None else colors[i]
+        ax.plot(np.asarray(x) * 1e3, np.asarray(force) / 1e3, label=label, color=color)
+    ax.set_xlabel("displacement about the mean [mm]")
+    ax.set_ylabel("load [kN]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize="small")
     return ax

@@ -10,22 +10,19 @@ stating the case and its speed.
 
 from __future__ import annotations
 
-import re
 import textwrap
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
 
-import matplotlib as mpl
 import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.ticker import LogFormatterSciNotation, NullLocator
 from numpy.typing import ArrayLike
 
 from railvib.io import new_figure, save_figure
-from railvib.labels import rail_label
+from railvib.plot import OVERVIEW_GROUPS
+from railvib.plot.axes import SuperscriptLogFormatter, label_log_axis, log_axis
 from railvib.results.units import QUANTITY_UNITS, quantity_unit
 
 __all__ = [
@@ -44,69 +41,19 @@ __all__ = [
     "save_overview",
 ]
 
-#: (file stem, title, responses) of the response figures written by ``railvib run``
-OVERVIEW_GROUPS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
-    ("psd_carbody", "Car body", ("carbody.bounce",)),
-    ("psd_bogie", "Bogies", ("bogie1.bounce", "bogie2.bounce")),
-    ("psd_wheelset", "Wheelsets", tuple(f"wheelset{i}.bounce" for i in range(1, 5))),
-    ("psd_rail", "Rail under the wheels", tuple(rail_label(i) for i in range(1, 5))),
-    ("psd_pitch", "Pitch", ("carbody.pitch", "bogie1.pitch", "bogie2.pitch")),
-)
-
 #: decades of PSD shown below the peak by :func:`psd_ylim`
 PSD_DECADES = 8.0
 
 _KN_PER_MM = 1e6  # N/m
 
-_MATHTEXT_POWER = re.compile(
-    r"^\$\\mathdefault\{(?P<sign>-?)(?:(?P<coeff>[0-9.e+]+)\\times)?(?P<base>\d+)"
-    r"\^\{(?P<exponent>-?\d+)\}\}\$$"
-)
-_SUPERSCRIPTS = str.maketrans(
-    "-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079"
-)
-
-
-class SuperscriptLogFormatter(LogFormatterSciNotation):
-    r"""Log-axis tick labels as matplotlib's default (``10^-5``, ``2x10^-5``), in Unicode.
-
-    Matplotlib writes them as mathtext (``$\mathdefault{10^{-5}}$``), whose parser
-    costs about 6 ms per distinct label, a fifth of the time of drawing a log-log
-    PSD figure; the same labels with superscript characters (``10⁻⁵``, ``2×10⁻⁵``)
-    look the same in the default font and draw as plain text. Which ticks are
-    labelled is matplotlib's choice (this is a
-    :class:`matplotlib.ticker.LogFormatterSciNotation`); labels of another form, and
-    every label when ``text.usetex`` is on, are left as matplotlib writes them.
-    """
-
-    def __call__(self, x: float, pos: int | None = None) -> str:
-        """The label of the tick at `x` (in axis units) and position `pos`."""
-        label = str(super().__call__(x, pos))
-        match = _MATHTEXT_POWER.match(label)
-        if match is None or mpl.rcParams["text.usetex"]:
-            return label
-        sign = "\u2212" if match["sign"] else ""  # the minus sign mathtext draws
-        coeff = f"{match['coeff']}\u00d7" if match["coeff"] else ""
-        return f"{sign}{coeff}{match['base']}{match['exponent'].translate(_SUPERSCRIPTS)}"
-
-
-def _superscripts(axis: Any) -> None:
-    """Label a log-scaled `axis` (``ax.xaxis`` or ``ax.yaxis``) with superscript powers."""
-    axis.set_major_formatter(SuperscriptLogFormatter())
-    axis.set_minor_formatter(SuperscriptLogFormatter(labelOnlyBase=False))
-
 
 def _log(ax: Axes, axis: str) -> None:
-    """Make the x or y `axis` of `ax` logarithmic, labelled by :class:`SuperscriptLogFormatter`.
+    """Make the x or y `axis` of `ax` logarithmic (:func:`railvib.plot.axes.log_axis`).
 
     A PSD (y) axis spans many decades: it keeps a tick and a grid line per decade and
-    no minor ticks, which would be unreadable there and cost most of a figure's drawing
-    time (hundreds of tick objects); the frequency (x) axis keeps its minor grid.
+    no minor ticks; the frequency (x) axis keeps its minor grid.
     """
-    getattr(ax, f"set_{axis}scale")("log")
-    _superscripts(ax.xaxis if axis == "x" else ax.yaxis)
-    if axis == "y":
-        ax.yaxis.set_minor_locator(NullLocator())
+    log_axis(ax, axis, minor=axis == "x")
 
 
 def _new_axes(ax: Axes | None, figsize: tuple[float, float]) -> Axes:
@@ -375,7 +322,7 @@ def plot_pad_stiffness(
             ax.set_xscale("log")
         ax.grid(True, which="both", alpha=0.3)
     for ax in axes if logx else ():  # after both scales: a shared axis resets the formatters
-        _superscripts(ax.xaxis)
+        label_log_axis(ax.xaxis)
     return ax_k, ax_eta
 
 

@@ -20,7 +20,7 @@ declarations, and nowhere else, railvib derives:
 """
 
 from railvib.registry.docs import toml_line
-from railvib.registry.family import TAG_KEYS, ExtraTable, Member, Registry
+from railvib.registry.family import MAX_MEMBER_DEPTH, TAG_KEYS, ExtraTable, Member, Registry
 from railvib.registry.parameters import (
     REQUIRED,
     Kind,
@@ -34,6 +34,7 @@ from railvib.registry.parameters import (
 from railvib.registry.tables import merge_tables, resolve_paths
 
 __all__ = [
+    "MAX_MEMBER_DEPTH",
     "REQUIRED",
     "TAG_KEYS",
     "ExtraTable",

@@ -10,12 +10,16 @@ from railvib.errors import CaseError, did_you_mean
 from railvib.registry import docs
 from railvib.registry.parameters import Parameter, declared_parameters, take_table
 
-__all__ = ["TAG_KEYS", "ExtraTable", "Member", "Registry"]
+__all__ = ["MAX_MEMBER_DEPTH", "TAG_KEYS", "ExtraTable", "Member", "Registry"]
 
 T = TypeVar("T")
 
 #: the keys that name a family member in a table (``Registry.tag`` of every family)
 TAG_KEYS = ("model", "type")
+
+#: most members nested in each other (a combined spectrum in a combined spectrum ...): the
+#: paper's recipe nests 2; deeper tables are refused before building recurses further
+MAX_MEMBER_DEPTH = 16
 
 
 @dataclass(frozen=True)
@@ -217,9 +221,20 @@ class Registry(Generic[T]):
         Raises
         ------
         CaseError
-            Unknown name or key, missing key, wrong type or value; the field is dotted,
-            e.g. ``irregularity.long_wave.class_number``.
+            Unknown name or key, missing key, wrong type or value, or members nested
+            more than :data:`MAX_MEMBER_DEPTH` deep; the field is dotted, e.g.
+            ``irregularity.long_wave.class_number``.
         """
+        return self._from_dict(d, field, 1)
+
+    def _from_dict(self, d: Any, field: str, depth: int) -> T:
+        """:meth:`from_dict` of a table `depth` members deep (1: not inside another)."""
+        if depth > MAX_MEMBER_DEPTH:
+            raise CaseError(
+                field,
+                f"<{self.plural} nested {depth} deep>",
+                f"{self.plural} nested at most {MAX_MEMBER_DEPTH} deep",
+            )
         if not isinstance(d, Mapping):
             raise CaseError(field, d, f"a table with a {self.tag!r} key")
         if self.tag not in d:
@@ -249,7 +264,7 @@ class Registry(Generic[T]):
             value = params[p.key]
             if p.kind == "member":
                 assert p.family is not None, "a member parameter names its family"
-                value = p.family.from_dict(value, f"{field}.{p.key}")
+                value = p.family._from_dict(value, f"{field}.{p.key}", depth + 1)
             elif p.kind == "table":
                 assert p.table is not None, "a table parameter names its dataclass"
                 value = p.table(

@@ -145,7 +145,7 @@ class Parameter:
             return "true or false"
         if self.kind in ("text", "path"):
             return {"text": "text", "path": "a file path"}[self.kind]
-        parts = [f"{op} {bound!r}" for op, bound in self.bounds]
+        parts = [f"{op} {_number(bound)}" for op, bound in self.bounds]
         return (" and ".join(parts) or "any finite value") + unit
 
 
@@ -267,6 +267,12 @@ def _declared_parameters(cls: Any) -> tuple[Parameter, ...]:
 # --------------------------------------------------------------------- value checks
 
 
+def _number(x: float) -> str:
+    """A bound as written in messages: ``0.0``, ``3.0``, ``1e+15`` (not ``1000000000000000.0``)."""
+    text = repr(x)
+    return text if len(text) <= 10 else f"{x:.6g}"
+
+
 def _is_number(value: Any) -> bool:
     return isinstance(value, int | float | np.integer | np.floating) and not isinstance(
         value, bool | np.bool_
@@ -291,7 +297,9 @@ def _bad(p: Parameter, where: str, value: Any, style: str, type_error: bool) -> 
         text = p.describe_allowed()
         return CaseError(where, value, f"must be {text}" if style == "must" else text)
     unit = f"({p.unit})" if p.unit not in ("", "-") else ""
-    limits = " ".join(x for x in (" and ".join(f"{o} {b!r}" for o, b in p.bounds), unit) if x)
+    limits = " ".join(
+        x for x in (" and ".join(f"{o} {_number(b)}" for o, b in p.bounds), unit) if x
+    )
     if style == "finite" or type_error:
         text = f"a finite number {limits}".strip()
     else:

@@ -16,7 +16,13 @@ Examples
 
 from railvib.reproduce.cases import load_study_cases, run_cases
 from railvib.reproduce.metrics import METRICS
-from railvib.reproduce.pipeline import DEFAULT_OUTDIR, ReproduceResult, n_steps, reproduce
+from railvib.reproduce.pipeline import (
+    DEFAULT_OUTDIR,
+    ReproduceResult,
+    n_steps,
+    reproduce,
+    reproduce_files,
+)
 from railvib.reproduce.study import CASES, COMPARISONS, FIGURES, PAPER_NUMBERS
 from railvib.reproduce.table import compare
 
@@ -32,5 +38,6 @@ __all__ = [
     "load_study_cases",
     "n_steps",
     "reproduce",
+    "reproduce_files",
     "run_cases",
 ]

@@ -17,12 +17,14 @@ from scipy.ndimage import uniform_filter1d
 from scipy.signal import find_peaks
 
 from railvib.docstrings import fill_doc
+from railvib.pads import LogLinearFit, TabulatedPad, fit_log_linear
 from railvib.results.stats import band_rms, dominant_frequency
 from railvib.results.stats import peak as _peak
 
 __all__ = [
     "METRICS",
     "Results",
+    "comb_peaks",
     "comb_period_hz",
     "comb_spacing",
     "crossover",
@@ -30,6 +32,8 @@ __all__ = [
     "frequency_shift",
     "headline_ratio",
     "headline_shift",
+    "pad_k0",
+    "pad_slope",
     "peak",
     "peak_difference",
     "peak_frequency",
@@ -274,6 +278,47 @@ def comb_period_hz(ds: xr.Dataset) -> float:
 
 
 @fill_doc(_SHARED)
+def comb_peaks(
+    results: Results,
+    case: str,
+    response: str,
+    band: Band,
+    prominence_decades: float = 0.1,
+    min_distance_hz: float = 5.0,
+) -> np.ndarray:
+    """Frequencies (Hz) of the comb teeth in `band`: the peaks :func:`comb_spacing` counts.
+
+    Local maxima of ``log10 PSD`` with a prominence of at least `prominence_decades`
+    and at least `min_distance_hz` apart.
+
+    Parameters
+    ----------
+    {results}
+    {case}
+    {response}
+    {band}
+    prominence_decades : float
+        Smallest prominence of a peak of ``log10 PSD``, in decades.
+    min_distance_hz : float
+        Smallest distance between two peaks in Hz.
+
+    Returns
+    -------
+    numpy.ndarray
+        Ascending grid frequencies of the peaks, Hz.
+    """
+    a = psd(results, case, response).sel(frequency=slice(*band))
+    f = a["frequency"].values
+    step = float(f[1] - f[0])
+    idx, _ = find_peaks(
+        np.log10(a.values),
+        prominence=prominence_decades,
+        distance=max(1, round(min_distance_hz / step)),
+    )
+    return np.asarray(f[idx], dtype=float)
+
+
+@fill_doc(_SHARED)
 def comb_spacing(
     results: Results,
     case: str,
@@ -284,8 +329,7 @@ def comb_spacing(
 ) -> float:
     """Mean spacing of the PSD peaks in `band`, Hz.
 
-    Local maxima of ``log10 PSD`` with a prominence of at least `prominence_decades`
-    and at least `min_distance_hz` apart; the spacing is ``(f_last - f_first)/(n - 1)``.
+    The peaks of :func:`comb_peaks`; the spacing is ``(f_last - f_first)/(n - 1)``.
 
     Parameters
     ----------
@@ -303,17 +347,10 @@ def comb_spacing(
     float
         Mean peak spacing in Hz, or NaN if fewer than two peaks are found.
     """
-    a = psd(results, case, response).sel(frequency=slice(*band))
-    f = a["frequency"].values
-    step = float(f[1] - f[0])
-    idx, _ = find_peaks(
-        np.log10(a.values),
-        prominence=prominence_decades,
-        distance=max(1, round(min_distance_hz / step)),
-    )
-    if idx.size < 2:
+    f = comb_peaks(results, case, response, band, prominence_decades, min_distance_hz)
+    if f.size < 2:
         return float("nan")
-    return float((f[idx[-1]] - f[idx[0]]) / (idx.size - 1))
+    return float((f[-1] - f[0]) / (f.size - 1))
 
 
 @fill_doc(_SHARED)
@@ -391,6 +428,59 @@ def headline_shift(results: Results, reference: str, cases: Sequence[str], respo
     )
 
 
+def _pad_law(results: Results, case: str, band: Band, f0_hz: float) -> LogLinearFit:
+    """The log-linear law fitted to the pad K' that drove `case`'s run, over `band`."""
+    ds = results[case]
+    k = np.asarray(ds["pad_stiffness"].values)
+    f = ds["frequency"].values
+    pad = TabulatedPad(tuple(f), tuple(k.real), tuple(k.imag))
+    return fit_log_linear(pad, float("nan"), band, f0_hz=f0_hz)
+
+
+@fill_doc(_SHARED)
+def pad_k0(results: Results, case: str, band: Band, f0_hz: float = 5.0) -> float:
+    """K0 of the paper's law ``K' = K0 (f/f0)^kappa`` fitted to the case's pad, kN/mm.
+
+    The law is fitted (:func:`railvib.pads.fit_log_linear`, least squares in log-log at
+    61 log-spaced frequencies over `band`) to the storage stiffness of the dataset's
+    ``pad_stiffness``: the pad that drove the run, at the case's pad temperature.
+
+    Parameters
+    ----------
+    {results}
+    {case}
+    {band}
+    f0_hz : float
+        Reference frequency f0 of the law, Hz.
+
+    Returns
+    -------
+    float
+        K0 in kN/mm.
+    """
+    return _pad_law(results, case, band, f0_hz).model.k0_n_per_m / 1e6
+
+
+@fill_doc(_SHARED)
+def pad_slope(results: Results, case: str, band: Band, f0_hz: float = 5.0) -> float:
+    """Log-log slope kappa of the case's pad K' over `band` (see :func:`pad_k0`).
+
+    Parameters
+    ----------
+    {results}
+    {case}
+    {band}
+    f0_hz : float
+        Reference frequency f0 of the law, Hz.
+
+    Returns
+    -------
+    float
+        kappa, dimensionless.
+    """
+    return _pad_law(results, case, band, f0_hz).model.exponent
+
+
 def _whole(ds: xr.Dataset) -> Band:
     f = ds["frequency"].values
     return float(f[0]), float(f[-1])
@@ -410,4 +500,6 @@ METRICS: Mapping[str, Callable[..., float]] = {
     "envelope_peak_frequency": envelope_peak_frequency,
     "headline_ratio": headline_ratio,
     "headline_shift": headline_shift,
+    "pad_k0": pad_k0,
+    "pad_slope": pad_slope,
 }

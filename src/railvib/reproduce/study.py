@@ -38,6 +38,7 @@ from railvib.reproduce.metrics import METRICS
 
 __all__ = [
     "CASES",
+    "CAUSES",
     "COMPARISONS",
     "DATA_FILE",
     "FIGURES",
@@ -158,6 +159,9 @@ class FigureSpec:
     paper_lines : tuple of (float, str)
         Frequencies (Hz) the paper states for this figure, drawn as dotted lines with
         their label.
+    zoom : (float, float) or None
+        A band (Hz) inside one panel drawn again as an extra panel, to tell the teeth of
+        a comb apart; the comb spacing measured over that panel is annotated there.
     """
 
     number: int
@@ -168,6 +172,7 @@ class FigureSpec:
     paper_points: tuple[PaperPoint, ...] = ()
     marks: tuple[Mark, ...] = ()
     paper_lines: tuple[tuple[float, str], ...] = ()
+    zoom: tuple[float, float] | None = None
 
     @property
     def stem(self) -> str:
@@ -202,13 +207,18 @@ class PaperNumber:
     reading : str
         How the number is read from our curves, in words.
     note : str
-        Why ours differs (interpretation, printing error, modelling choice), or "".
+        Why ours differs (interpretation, printing error, modelling choice), or "": the
+        `remark` and the text of each of the `causes`, joined.
     claim : (str, float) or None
         A comparison our value must satisfy for the paper's statement to hold, e.g.
         ``(">", 1.0)``; None for a plain number.
     derived : bool
         True when `paper` is computed from numbers the paper states (a ratio or a
         difference), not printed by it.
+    causes : tuple of str
+        The shared causes of the difference (names of the study's ``[notes]``), in order.
+    remark : str
+        What `note` says about this number alone (its parts that are not a cause).
     """
 
     id: str
@@ -223,6 +233,8 @@ class PaperNumber:
     note: str = ""
     claim: tuple[str, float] | None = None
     derived: bool = False
+    causes: tuple[str, ...] = ()
+    remark: str = ""
 
 
 @dataclass(frozen=True)
@@ -236,7 +248,7 @@ class Study:
     comparisons : tuple of Comparison
         The sets of cases the paper overlays.
     figures : tuple of FigureSpec
-        The paper's figures, in file order.
+        The paper's figures, in file order (a number repeats for another comparison).
     numbers : tuple of PaperNumber
         Every number the paper states, in file order.
     components : mapping of str to str
@@ -245,7 +257,8 @@ class Study:
     psd_unit : str
         Unit of the PSDs, ``"m^2/s^4/Hz"``.
     notes : mapping of str to str
-        The shared notes, by name (a number's ``note = "@name"``).
+        The shared notes, by name (a number's ``note = "@name"``): the causes of the
+        differences, each written once and referenced from every number it explains.
     """
 
     cases: tuple[StudyCase, ...]
@@ -265,7 +278,7 @@ _COMPONENTS = ("body", "bogie", "wheelset", "rail")
 _CASE_KEYS = ("key", "preset", "label", "color")
 _COMPARISON_KEYS = ("key", "title", "section", "cases")
 _FIGURE_REQUIRED = ("number", "comparison", "component", "response", "panels")
-_FIGURE_OPTIONAL = ("paper_points", "marks", "paper_lines")
+_FIGURE_OPTIONAL = ("paper_points", "marks", "paper_lines", "zoom")
 _POINT_KEYS = ("case", "frequency_hz", "psd")
 _MARK_KEYS = ("label", "band")
 _LINE_KEYS = ("frequency_hz", "label")
@@ -426,15 +439,20 @@ def _figure(
             t.get("paper_lines", []), f"{f}.paper_lines", _LINE_KEYS, nonempty=False
         )
     )
+    bands = tuple(r.band(p, f"{f}.panels[{i}]") for i, p in enumerate(panels))
+    zoom = r.band(t["zoom"], f"{f}.zoom") if "zoom" in t else None
+    if zoom is not None and not any(lo <= zoom[0] and zoom[1] <= hi for lo, hi in bands):
+        raise r.error(f"{f}.zoom", t["zoom"], "[low, high] inside one of the panels (Hz)")
     return FigureSpec(
         number=number,
         comparison=comparison,
         component=r.string(t["component"], f"{f}.component"),
         response=r.choice(t["response"], f"{f}.response", responses, "a [components] response"),
-        panels=tuple(r.band(p, f"{f}.panels[{i}]") for i, p in enumerate(panels)),
+        panels=bands,
         paper_points=points,
         marks=marks,
         paper_lines=lines,
+        zoom=zoom,
     )
 
 
@@ -482,8 +500,14 @@ def _args(
     return MappingProxyType(args)
 
 
-def _note(r: _Reader, value: Any, f: str, notes: Mapping[str, str]) -> str:
-    """A number's note: a string or a list of strings joined by spaces; "@name" = notes[name]."""
+def _note(
+    r: _Reader, value: Any, f: str, notes: Mapping[str, str]
+) -> tuple[str, tuple[str, ...], str]:
+    """A number's note, causes and remark.
+
+    The note is a string or a list of strings joined by spaces, "@name" standing for
+    notes[name] (a cause); the remark joins the other parts.
+    """
     parts = [value] if isinstance(value, str) else value
     if not isinstance(parts, list) or not parts or not all(isinstance(p, str) for p in parts):
         raise r.error(
@@ -492,7 +516,9 @@ def _note(r: _Reader, value: Any, f: str, notes: Mapping[str, str]) -> str:
     for part in parts:
         if part.startswith("@") and part[1:] not in notes:
             raise r.error(f, part, f"'@' and a [notes] entry, one of {', '.join(notes)}")
-    return " ".join(notes[p[1:]] if p.startswith("@") else p for p in parts)
+    note = " ".join(notes[p[1:]] if p.startswith("@") else p for p in parts)
+    causes = tuple(dict.fromkeys(p[1:] for p in parts if p.startswith("@")))
+    return note, causes, " ".join(p for p in parts if not p.startswith("@"))
 
 
 def _paper(r: _Reader, t: dict[str, Any], f: str, unit: str) -> tuple[float | None, bool]:
@@ -538,6 +564,7 @@ def _number(
         claim = (c[0], r.number(c[1], f"{f}.claim[1]", unit))
     elif paper is None:
         raise r.error(f"{f}.claim", None, "required without paper or paper_expr")
+    note, causes, remark = _note(r, t["note"], f"{f}.note", notes) if "note" in t else ("", (), "")
     return PaperNumber(
         id=r.string(t["id"], f"{f}.id"),
         source=r.string(t["source"], f"{f}.source"),
@@ -548,9 +575,11 @@ def _number(
         metric=metric,
         args=_args(r, t["args"], f"{f}.args", metric, case_keys, responses),
         reading=r.string(t["reading"], f"{f}.reading"),
-        note=_note(r, t["note"], f"{f}.note", notes) if "note" in t else "",
+        note=note,
         claim=claim,
         derived=derived,
+        causes=causes,
+        remark=remark,
     )
 
 
@@ -573,7 +602,8 @@ def _study(r: _Reader, data: dict[str, Any]) -> Study:
         _figure(r, f, t, by_key, responses)
         for f, t in r.tables(data["figure"], "figure", _FIGURE_REQUIRED, _FIGURE_OPTIONAL)
     )
-    r.unique([str(g.number) for g in figures], "figure", "number")
+    # a figure may be redrawn for another comparison (Figs. 13-16 on the predicted pads)
+    r.unique([f"{g.number} ({g.comparison})" for g in figures], "figure", "number")
     numbers = tuple(
         _number(r, f, t, case_keys, responses, notes)
         for f, t in r.tables(data["number"], "number", _NUMBER_REQUIRED, _NUMBER_OPTIONAL)
@@ -637,7 +667,7 @@ _STUDY = load_study()
 CASES: tuple[StudyCase, ...] = _STUDY.cases
 #: the sets of cases the paper overlays (sections 3.3 and 3.4)
 COMPARISONS: tuple[Comparison, ...] = _STUDY.comparisons
-#: the paper's Figs. 9-16
+#: the paper's Figs. 9-16, then Figs. 13-16 on the predicted pads
 FIGURES: tuple[FigureSpec, ...] = _STUDY.figures
 #: every number the paper states, with how we read it
 PAPER_NUMBERS: tuple[PaperNumber, ...] = _STUDY.numbers
@@ -652,3 +682,5 @@ WHEELSET: str = _STUDY.components["wheelset"]
 RAIL: str = _STUDY.components["rail"]
 #: unit of the PSDs
 PSD_UNIT: str = _STUDY.psd_unit
+#: the causes of the differences (the study's ``[notes]``), by name
+CAUSES: MappingProxyType[str, str] = _STUDY.notes

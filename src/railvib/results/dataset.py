@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from railvib.errors import NonFiniteResult
 from railvib.io import atomic_path
 from railvib.labels import displacement_unit
 from railvib.response import FRF
@@ -21,6 +22,7 @@ __all__ = [
     "atomic_path",
     "build_dataset",
     "build_dataset_blocks",
+    "check_finite",
     "column_units",
     "load_netcdf",
     "save_csv",
@@ -172,6 +174,46 @@ def _encode(ds: xr.Dataset) -> xr.Dataset:
     return out
 
 
+def check_finite(ds: xr.Dataset) -> None:
+    """Refuse a result dataset holding NaN or infinite values, naming what is not finite.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset (see :func:`build_dataset`); its real and complex variables
+        are checked.
+
+    Raises
+    ------
+    railvib.errors.NonFiniteResult
+        One line: the first variable with NaN or infinite values, at how many of the
+        frequencies and the first of them (Hz), and the other variables affected.
+    """
+    bad = [
+        str(name)
+        for name, da in ds.data_vars.items()
+        if da.dtype.kind in "fc" and not np.isfinite(da.values).all()
+    ]
+    if not bad:
+        return
+    da = ds[bad[0]]
+    where = ""
+    if "frequency" in da.dims:
+        axis = tuple(i for i, d in enumerate(da.dims) if d != "frequency")
+        hit = ~np.isfinite(da.values).all(axis=axis)
+        first = ds["frequency"].values[hit][0]
+        where = f" at {hit.sum()} of {hit.size} frequencies, the first at {first:g} Hz"
+    others = ""
+    if len(bad) > 1:
+        names = ", ".join(bad[1:4]) + (", ..." if len(bad) > 4 else "")
+        others = f" (also {names})"
+    raise NonFiniteResult(
+        f"result {bad[0]} is NaN or infinite{where}{others}: "
+        "the case's values are beyond what the solver resolves in floating point "
+        "(see any warning above for a likely unit slip)"
+    )
+
+
 def save_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     """Write `ds` to netCDF-4 atomically, whatever its types.
 
@@ -179,6 +221,11 @@ def save_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     stored as int8 with the attribute ``dtype_stored_as = "bool"``; attribute values
     netCDF cannot hold (dicts, sequences of strings, booleans, None, ...) are written
     as their ``str``. :func:`load_netcdf` restores complex and boolean variables.
+
+    The file is built in memory by HDF5 and then written by Python: HDF5 left with a
+    failed write (a full disk, a file-size limit) crashes the interpreter when it
+    later closes the file (h5py 3.16, h5netcdf 1.8), whereas a Python write fails
+    cleanly. It costs memory the size of the file.
 
     Parameters
     ----------
@@ -191,10 +238,17 @@ def save_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     -------
     pathlib.Path
         `path`.
+
+    Raises
+    ------
+    railvib.errors.OutputError
+        The file cannot be written (full disk, file-size limit, read-only folder);
+        an existing `path` is left as it was and no temporary remains.
     """
     path = Path(path)
-    with atomic_path(path) as tmp:
-        _encode(ds).to_netcdf(tmp, engine="h5netcdf")
+    data = _encode(ds).to_netcdf(engine="h5netcdf")  # bytes: no file open in HDF5
+    with atomic_path(path) as tmp, tmp.open("wb") as out:
+        out.write(data)
     return path
 
 

@@ -36,6 +36,17 @@ class SpatialSpectrum(ABC):
     def validate(self) -> None:  # noqa: B027 (a hook: most spectra need no extra check)
         """Check conditions between parameters (each parameter alone is checked already)."""
 
+    def steps_rad_per_m(self) -> tuple[float, ...]:
+        """Wavenumbers (rad/m) where the spectrum jumps by definition (a hard join); none here.
+
+        Returns
+        -------
+        tuple of float
+            Ascending wavenumbers in rad/m; at speed v a step at Omega is seen at
+            ``f = v Omega / (2 pi)`` Hz in the temporal PSD.
+        """
+        return ()
+
     @abstractmethod
     def psd(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
         """One-sided PSD in m^2/(rad/m) at spatial circular frequency `wavenumber` (rad/m, > 0)."""

@@ -7,7 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.registry import parameter
+from railvib.errors import CaseError
+from railvib.registry import MAX_MEMBER_DEPTH, parameter
 from railvib.spectra._checks import as_wavenumber
 from railvib.spectra.base import SPECTRA, SpatialSpectrum
 
@@ -50,16 +51,54 @@ class Combined(SpatialSpectrum):
         "m^2/(rad/m)", "spectrum below the split wavelength", kind="member", family=SPECTRA
     )
     split_wavelength_m: float = parameter(
-        "m", "split wavelength", default=1.0, gt=0.0, typical=(0.5, 2.0)
+        "m", "split wavelength", default=1.0, gt=0.0, le=1e3, typical=(0.5, 2.0)
     )
     blend_decades: float = parameter(
-        "decades", "width of a smooth log-space blend (0: hard switch)", default=0.0, ge=0.0
+        "decades",
+        "width of a smooth log-space blend (0: hard switch)",
+        default=0.0,
+        ge=0.0,
+        le=10.0,
     )
+
+    def validate(self) -> None:
+        """At most :data:`railvib.registry.MAX_MEMBER_DEPTH` spectra nested in each other."""
+        long, short = _depth(self.long_wave), _depth(self.short_wave)
+        depth = 1 + max(long, short)
+        if depth > MAX_MEMBER_DEPTH:
+            raise CaseError(
+                "long_wave" if long >= short else "short_wave",
+                f"<combined spectra {depth} deep>",
+                f"combined spectra nested at most {MAX_MEMBER_DEPTH} deep",
+            )
+        object.__setattr__(self, "_depth", depth)  # not a field: kept out of eq, repr, dicts
+
+    @property
+    def depth(self) -> int:
+        """Combined spectra nested in this one, counting itself: 1 for two plain spectra."""
+        return int(self.__dict__["_depth"])
 
     @property
     def split_wavenumber_rad_per_m(self) -> float:
         """Wavenumber of the split, ``2 pi / split_wavelength_m``, in rad/m."""
         return 2.0 * np.pi / self.split_wavelength_m
+
+    def steps_rad_per_m(self) -> tuple[float, ...]:
+        """Wavenumbers (rad/m) of the jumps: the hard split, and those of the two members.
+
+        Returns
+        -------
+        tuple of float
+            Ascending, in rad/m: the split wavenumber when ``blend_decades == 0`` (the
+            joined spectrum is discontinuous there), and each member's own steps on the
+            side of the split where that member is used.
+        """
+        om_s = self.split_wavenumber_rad_per_m
+        steps = [om for om in self.long_wave.steps_rad_per_m() if om < om_s]
+        steps += [om for om in self.short_wave.steps_rad_per_m() if om > om_s]
+        if self.blend_decades == 0.0:
+            steps.append(om_s)
+        return tuple(sorted(steps))
 
     def short_wave_weight(self, wavenumber: ArrayLike) -> NDArray[np.float64]:
         """Weight w in [0, 1] of the short-wave spectrum at `wavenumber` (rad/m, > 0)."""
@@ -86,3 +125,8 @@ class Combined(SpatialSpectrum):
             )
         arithmetic = (1.0 - w) * s_long + w * s_short
         return np.where(both, geometric, arithmetic)
+
+
+def _depth(spectrum: SpatialSpectrum) -> int:
+    """:attr:`Combined.depth` of `spectrum`, 0 for a spectrum that holds no other."""
+    return spectrum.depth if isinstance(spectrum, Combined) else 0

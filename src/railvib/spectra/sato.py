@@ -32,6 +32,7 @@ class Sato(SpatialSpectrum):
         "A: 4.15e-8 good track, 5.0e-7 poor track",
         default=4.15e-8,
         gt=0.0,
+        le=1e-3,
         typical=(4.15e-8, 5.0e-7),
         log=True,
     )

@@ -33,10 +33,15 @@ class ShiTai(SpatialSpectrum):
     """
 
     coefficient: float = parameter(
-        "mm^2/(cycle/m)", "level at n = 1 cycle/m", default=0.036, gt=0.0, typical=(0.01, 0.1)
+        "mm^2/(cycle/m)",
+        "level at n = 1 cycle/m",
+        default=0.036,
+        gt=0.0,
+        le=1e3,
+        typical=(0.01, 0.1),
     )
     exponent: float = parameter(
-        "-", "power-law exponent of n", default=3.15, gt=0.0, typical=(2.5, 3.5)
+        "-", "power-law exponent of n", default=3.15, gt=0.0, le=10.0, typical=(2.5, 3.5)
     )
 
     def psd(self, wavenumber: ArrayLike) -> NDArray[np.float64]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import io
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -10,7 +11,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, excerpt
+from railvib.io import MAX_TABLE_BYTES, read_text
 from railvib.registry import Parameter
 from railvib.spectra._checks import as_wavenumber
 from railvib.spectra.base import SPECTRA, SpatialSpectrum
@@ -37,11 +39,24 @@ COLUMN_UNITS = {
 }
 
 
+#: largest wavenumber of a table, rad/m (a wavelength of 6 um: below any roughness measured)
+MAX_WAVENUMBER_RAD_PER_M = 1e6
+#: largest PSD of a table, m^2/(rad/m) (FRA class 1, the worst track, stays below 1e-4 above
+#: 0.01 rad/m): keeps every response PSD finite
+MAX_PSD_M2_PER_RAD_PER_M = 1.0
+
+
 def _check_column(name: str, values: NDArray[np.float64], unit: str) -> None:
     ok = np.isfinite(values) & (values > 0.0)
     if not np.all(ok):
         bad = float(values[~ok][0])
         raise CaseError(name, bad, f"every value must be finite and > 0 ({unit})")
+
+
+def _check_at_most(name: str, values: NDArray[np.float64], limit: float, unit: str) -> None:
+    if np.any(values > limit):
+        bad = float(values[values > limit][0])
+        raise CaseError(name, bad, f"every value must be <= {limit:g} ({unit})")
 
 
 #: keys of a ``type = "tabulated"`` table: a CSV file, or the two arrays inline
@@ -54,8 +69,24 @@ TABLE_PARAMETERS = (
         default=None,
     ),
     Parameter("delimiter", "", "field separator of the CSV file", "text", default=","),
-    Parameter("wavenumber_rad_per_m", "rad/m", "wavenumbers, inline", "numbers", default=None),
-    Parameter("psd_m2_per_rad_per_m", "m^2/(rad/m)", "PSD values, inline", "numbers", default=None),
+    Parameter(
+        "wavenumber_rad_per_m",
+        "rad/m",
+        "wavenumbers, inline",
+        "numbers",
+        default=None,
+        gt=0.0,
+        le=MAX_WAVENUMBER_RAD_PER_M,
+    ),
+    Parameter(
+        "psd_m2_per_rad_per_m",
+        "m^2/(rad/m)",
+        "PSD values, inline",
+        "numbers",
+        default=None,
+        gt=0.0,
+        le=MAX_PSD_M2_PER_RAD_PER_M,
+    ),
 )
 
 
@@ -93,6 +124,8 @@ class Tabulated(SpatialSpectrum):
             )
         _check_column("wavenumber_rad_per_m", om, "rad/m")
         _check_column("psd_m2_per_rad_per_m", s, "m^2/(rad/m)")
+        _check_at_most("wavenumber_rad_per_m", om, MAX_WAVENUMBER_RAD_PER_M, "rad/m")
+        _check_at_most("psd_m2_per_rad_per_m", s, MAX_PSD_M2_PER_RAD_PER_M, "m^2/(rad/m)")
         order = np.argsort(om)
         om, s = om[order], s[order]
         if np.any(np.diff(om) <= 0.0):
@@ -119,21 +152,36 @@ class Tabulated(SpatialSpectrum):
         Raises
         ------
         CaseError
-            Unreadable file, unknown / missing / repeated column, non-numeric cell, or a
-            table that fails the checks of :class:`Tabulated`.
+            A file :func:`railvib.io.read_text` refuses (unreadable, not a regular file,
+            over :data:`railvib.io.MAX_TABLE_BYTES`, binary, not UTF-8), a file that is
+            not such a table, unknown / missing / repeated column, non-numeric cell, or a
+            table that fails the checks of :class:`Tabulated`. Messages show at most a
+            short excerpt of the file.
         """
+        _check_delimiter(delimiter)
+        text = read_text(path, "path", "CSV table", max_bytes=MAX_TABLE_BYTES)
         try:
-            with open(path, newline="", encoding="utf-8") as fh:
-                rows = [r for r in csv.reader(fh, delimiter=delimiter) if any(c.strip() for c in r)]
-        except OSError as exc:
-            raise CaseError("path", str(path), f"a readable CSV file ({exc.strerror})") from None
+            rows = [
+                r
+                for r in csv.reader(io.StringIO(text, newline=""), delimiter=delimiter)
+                if any(c.strip() for c in r)
+            ]
+        except csv.Error as exc:
+            raise CaseError("path", str(path), f"a CSV table ({exc})") from None
         if not rows:
             raise CaseError("path", str(path), "a CSV file with a header row and >= 2 data rows")
         header = [c.strip() for c in rows[0]]
         allowed = ", ".join([*ABSCISSA_COLUMNS, *PSD_COLUMNS])
+        if not any(name in ABSCISSA_COLUMNS or name in PSD_COLUMNS for name in header):
+            raise CaseError(
+                "path",
+                str(path),
+                f"a CSV table whose header row names its columns, two of {allowed}; the "
+                "first line of this file names none of them: it is not such a table",
+            )
         for name in header:
             if name not in ABSCISSA_COLUMNS and name not in PSD_COLUMNS:
-                raise CaseError("column", name, f"one of {allowed}")
+                raise CaseError("column", excerpt(name, 24), f"one of {allowed}")
         if len(set(header)) != len(header):
             raise CaseError("column", header, "each column at most once")
         x_cols = [c for c in header if c in ABSCISSA_COLUMNS]
@@ -145,11 +193,11 @@ class Tabulated(SpatialSpectrum):
         data = np.empty((len(rows) - 1, 2))
         for i, row in enumerate(rows[1:], start=2):
             if len(row) != len(header):
-                raise CaseError(f"row {i}", row, f"{len(header)} cells")
+                raise CaseError(f"row {i}", excerpt(delimiter.join(row)), f"{len(header)} cells")
             try:
                 cells = dict(zip(header, (float(c) for c in row), strict=True))
             except ValueError:
-                raise CaseError(f"row {i}", row, "numbers only") from None
+                raise CaseError(f"row {i}", excerpt(delimiter.join(row)), "numbers only") from None
             data[i - 2] = cells[x_cols[0]], cells[s_cols[0]]
         x, s = data[:, 0], data[:, 1]
         if x.size < 2:
@@ -166,6 +214,27 @@ class Tabulated(SpatialSpectrum):
         s = np.exp(np.interp(np.log(om), log_om, log_s))
         inside = (om >= self.wavenumber_rad_per_m[0]) & (om <= self.wavenumber_rad_per_m[-1])
         return np.where(inside, s, 0.0)
+
+
+#: characters a CSV delimiter cannot be: they belong to numbers, quotes or line breaks
+_NOT_DELIMITERS = set(".+-eE\"'\r\n")
+
+
+def _check_delimiter(delimiter: Any) -> None:
+    """Refuse a delimiter that is not one character a table of numbers can be split at."""
+    ok = (
+        isinstance(delimiter, str)
+        and len(delimiter) == 1
+        and not delimiter.isalnum()
+        and delimiter not in _NOT_DELIMITERS
+    )
+    if not ok:
+        raise CaseError(
+            "delimiter",
+            delimiter,
+            "one character that is not a letter, digit, '.', '+', '-', quote or line break "
+            "(e.g. ',', ';' or a tab)",
+        )
 
 
 def _from_table(**d: Any) -> Tabulated:

@@ -29,6 +29,16 @@ def is_pad_field(field: str) -> bool:
 
     Cases differing in such fields share rail, sleepers, vehicle and contact, and are
     solved as one stack (:func:`railvib.sweep.stacked.frf_pad_stack`).
+
+    Parameters
+    ----------
+    field : str
+        Dotted case field, e.g. ``"track.pad.k0_n_per_m"``.
+
+    Returns
+    -------
+    bool
+        True for ``track.pad``, ``track.pad.*`` and ``track.pad_temperature_c``.
     """
     return field in ("track.pad", "track.pad_temperature_c") or field.startswith("track.pad.")
 

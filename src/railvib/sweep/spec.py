@@ -46,13 +46,18 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_dicts
+from railvib.case.build import build_grid, build_vehicle
 from railvib.case.errors import case_error
+from railvib.case.plausibility import physical_memory_bytes
+from railvib.case.schema import check_label
 from railvib.errors import CaseError, RailvibDeprecationWarning, did_you_mean
-from railvib.io import read_toml
+from railvib.io import check_nesting, read_toml
 from railvib.outputs import LOSS_OF_CONTACT_NOTE
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
 
 __all__ = [
+    "MAX_AXIS_VALUES",
+    "MAX_SWEEP_CASES",
     "PER_FREQUENCY_VARIABLES",
     "SUMMARY_VARIABLES",
     "AxisSpec",
@@ -72,6 +77,16 @@ SUMMARY_VARIABLES = ("psd_acceleration", "psd_displacement")
 
 #: case fields that cannot vary: every case shares one grid and one set of summary bands
 _FIXED_PREFIXES = ("frequency", "output", "title")
+#: keys of a case file that are not case fields: merged before the axes apply
+_NOT_FIELDS = ("preset",)
+#: the case fields an axis can vary (the top of their dotted names)
+_VARIABLE_FIELDS = "speed_kmh, rail_model, vehicle.*, track.*, contact.* and irregularity.*"
+
+#: most values of one axis (each is validated with the base case, about 0.5 ms each)
+MAX_AXIS_VALUES = 10_000
+#: most cases of one sweep (a million cases of the paper's 10,000-frequency grid take some
+#: 100 CPU-hours)
+MAX_SWEEP_CASES = 1_000_000
 
 
 class _Model(BaseModel):
@@ -88,10 +103,12 @@ class AxisSpec(_Model):
 
     field: str = Field(..., min_length=1, description="dotted case field, e.g. speed_kmh")
     name: str | None = Field(None, min_length=1, description="dimension name (default: field)")
-    values: list[Any] | None = Field(None, min_length=1, description="explicit values")
+    values: list[Any] | None = Field(
+        None, min_length=1, max_length=MAX_AXIS_VALUES, description="explicit values"
+    )
     start: float | None = None
     stop: float | None = None
-    num: int | None = Field(None, ge=1)
+    num: int | None = Field(None, ge=1, le=MAX_AXIS_VALUES)
     step: float | None = Field(None, gt=0.0)
     spacing: Literal["linear", "log"] = "linear"
     labels: list[str] | None = Field(None, description="coordinate labels (tables as values)")
@@ -105,6 +122,9 @@ class AxisSpec(_Model):
         if self.values is None:
             if self.start is None or self.stop is None:
                 raise CaseError("start", None, "values, or start and stop with num or step")
+            for key in ("start", "stop"):
+                if not math.isfinite(getattr(self, key)):
+                    raise CaseError(key, getattr(self, key), "a finite number")
             if (self.num is None) == (self.step is None):
                 raise CaseError("num", self.num, "give exactly one of num and step")
             if self.spacing == "log" and not (self.start > 0 and self.stop > 0):
@@ -113,6 +133,20 @@ class AxisSpec(_Model):
                 raise CaseError("step", self.step, "a log range takes num, not step")
             if self.step is not None and self.stop < self.start:
                 raise CaseError("stop", self.stop, f"must be >= start = {self.start}")
+            if self.step is not None:
+                count = math.floor((self.stop - self.start) / self.step + 1e-9) + 1
+                if count > MAX_AXIS_VALUES:
+                    raise CaseError(
+                        "step",
+                        self.step,
+                        f"at most {MAX_AXIS_VALUES:,} values per axis; this step gives "
+                        f"{count:,} from {self.start:g} to {self.stop:g}",
+                    )
+        for key in ("name", "zip"):
+            if getattr(self, key) is not None:
+                check_label(key, getattr(self, key), 100)
+        for i, label in enumerate(self.labels or ()):
+            check_label(f"labels[{i}]", label, 100)
         return self
 
     @property
@@ -150,6 +184,7 @@ class SweepFile(_Model):
 
     @model_validator(mode="after")
     def _check(self) -> SweepFile:
+        check_label("title", self.title)
         for i, name in enumerate(self.variables):
             if name not in PER_FREQUENCY_VARIABLES:
                 raise CaseError(
@@ -549,6 +584,7 @@ def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
         With the dotted field name, the value and what is allowed.
     """
     base_dir = Path(base_dir) if base_dir is not None else Path.cwd()
+    check_nesting(data, "sweep")
     try:
         spec = SweepFile.model_validate(data)
     except ValidationError as exc:
@@ -614,8 +650,17 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tupl
     dims: set[str] = set()
     # first: its axis values would each warn that the pad ignores the temperature
     _check_temperature_axis(base, [ax.field for ax in spec.axes], base_dir)
+    _check_count(spec)  # before each value is validated (about 0.5 ms each)
     for i, ax in enumerate(spec.axes):
         where = f"axes[{i}]"
+        if ax.field.split(".")[0] in _NOT_FIELDS:
+            raise CaseError(
+                f"{where}.field",
+                ax.field,
+                "a case field, not 'preset': a preset is merged into the base case before "
+                "the axes apply, so this axis would change nothing; sweep the fields the "
+                f"presets differ in ({_VARIABLE_FIELDS}), or run one sweep per preset",
+            )
         if ax.field.split(".")[0] in _FIXED_PREFIXES:
             raise CaseError(
                 f"{where}.field", ax.field, "frequency.*, output.* and title cannot vary (one grid)"
@@ -641,7 +686,58 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tupl
             )
         )
     _check_groups(axes)
+    _check_size(axes, spec, base, base_dir)
     return tuple(axes)
+
+
+def _groups(spec: SweepFile) -> dict[str, int]:
+    """Number of values along each sweep dimension (zip label, axis name, or ``case``)."""
+    sizes: dict[str, int] = {}
+    for ax in spec.axes:
+        group = "case" if spec.mode == "zip" else (ax.zip or ax.dim)
+        sizes[group] = max(sizes.get(group, 0), len(ax.resolved_values()))
+    return sizes
+
+
+def _check_count(spec: SweepFile) -> None:
+    """Refuse a sweep of more than :data:`MAX_SWEEP_CASES` cases."""
+    sizes = _groups(spec)
+    cases = math.prod(sizes.values())
+    if cases > MAX_SWEEP_CASES:
+        what = " x ".join(f"{n:,} ({group})" for group, n in sizes.items())
+        raise CaseError(
+            "axes", f"{cases:,} cases", f"at most {MAX_SWEEP_CASES:,} cases; this sweep has {what}"
+        )
+
+
+def _check_size(
+    axes: Sequence[SweepAxis], spec: SweepFile, base: dict[str, Any], base_dir: Path
+) -> None:
+    """Refuse a sweep whose results do not fit in this machine's memory.
+
+    The assembled sweep holds the per-frequency variables it keeps (float64) of every
+    case in memory: ``cases x frequencies x (values per frequency) x 8`` bytes.
+    """
+    sizes = {ax.group: ax.size for ax in axes}
+    cases = math.prod(sizes.values())
+    what = " x ".join(f"{n:,} ({group})" for group, n in sizes.items())
+    memory = physical_memory_bytes()
+    if memory is None or not spec.variables:
+        return
+    case = case_from_dict(base, base_dir=base_dir, warn=False)
+    vehicle = build_vehicle(case)
+    extra = {"response": len(vehicle.dofs) + len(vehicle.wheels), "wheel": len(vehicle.wheels)}
+    per_frequency = sum(extra.get(str(PER_FREQUENCY_VARIABLES[v]), 1) for v in spec.variables)
+    n_freq = len(build_grid(case))
+    needed = cases * n_freq * per_frequency * 8
+    if needed > memory:
+        raise CaseError(
+            "axes",
+            f"{cases:,} cases",
+            f"a sweep whose results fit in this machine's {memory / 1e9:.3g} GB of memory: "
+            f"{what} cases of {n_freq:,} frequencies keeping {', '.join(spec.variables)} need "
+            f"about {needed / 1e9:.3g} GB (keep fewer variables, or split the sweep)",
+        )
 
 
 def _check_groups(axes: Sequence[SweepAxis]) -> None:

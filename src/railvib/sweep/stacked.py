@@ -3,7 +3,7 @@
 Cases that differ in their railpad (model, parameters, temperature) and in speed
 share the rail, the sleeper spacing, the vehicle, the contact and the wheel positions.
 Their ``n_case x n_freq`` points are laid on one leading axis (case-major) and solved by
-one call of each kernel (``docs/design/0005-stacked-batches.md``):
+one call of each kernel (``docs/design/0006-stacked-batches.md``):
 
 * the pad's ``K*(f, T)`` of every case is evaluated into the stack, and the track's own
   wave solution (:meth:`railvib.track.PeriodicTrack.receptance`) runs once over it, with
@@ -214,6 +214,7 @@ def frf_stack(
     """
     f_np = np.atleast_1d(np.asarray(f, dtype=float))
     speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+    system.track.check_frequencies(f_np)
     cond = system.vehicle.condensed_to_wheels(f_np, xp)
     per_block = max(1, (FREQUENCY_BLOCK if block is None else int(block)) // f_np.size)
     parts = [

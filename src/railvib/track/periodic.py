@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.docstrings import fill_doc
 from railvib.errors import CaseError, SolverWarning
 from railvib.pads.base import PADS, PadModel
-from railvib.registry import Parameter, check_parameters, parameter
+from railvib.registry import Parameter, check_parameters, check_value, parameter
 from railvib.track.base import TRACKS, TrackModel
 from railvib.track.beam import (
     dynamic_stiffness,
@@ -34,7 +34,7 @@ from railvib.track.beam import (
     timoshenko_transfer,
 )
 
-__all__ = ["PeriodicTrack", "Rail", "TrackWaves"]
+__all__ = ["MAX_BAY_WAVENUMBER", "PeriodicTrack", "Rail", "TrackWaves"]
 
 #: parameter documentation shared by the track methods (:func:`railvib.docstrings.fill_doc`)
 _SHARED = {
@@ -48,6 +48,12 @@ CONDITION_WARNING = 1e7
 
 #: where ``| |mu| - 1 |`` is below this, waves are sorted by energy flow, not modulus
 ENERGY_FLOW_TOLERANCE = 1e-6
+
+#: largest bending wavenumber times sleeper spacing, ``|beta4|^(1/4) = (m omega^2 d^4 /
+#: |EI*|)^(1/4)`` (dimensionless; CHN60 at d = 0.6 m: 5.9 at 5 kHz): the bay's power series
+#: then needs terms up to 1/170!, the last factorial within float64, and the bay's
+#: transfer matrix holds cosh(40) ~ 1e17, still finite
+MAX_BAY_WAVENUMBER = 40.0
 
 
 @dataclass(frozen=True)
@@ -71,14 +77,21 @@ class Rail:
         Timoshenko beam. CHN60: 7850 x 3.217e-5 = 0.2525.
     """
 
+    # upper bounds: some 100 times any rail's value (CHN60: 6.62e6 N m^2, 60.64 kg/m,
+    # eta_r ~ 0.01), so that no real rail is refused and products of them stay finite
     bending_stiffness: float = parameter(
-        "N m^2", "bending stiffness EI of the rail beam", gt=0.0, typical=(3e6, 1.2e7), log=True
+        "N m^2",
+        "bending stiffness EI of the rail beam",
+        gt=0.0,
+        le=1e10,
+        typical=(3e6, 1.2e7),
+        log=True,
     )
     mass_per_length: float = parameter(
-        "kg/m", "mass per unit length of the rail beam", gt=0.0, typical=(40.0, 80.0)
+        "kg/m", "mass per unit length of the rail beam", gt=0.0, le=1e4, typical=(40.0, 80.0)
     )
     loss_factor: float = parameter(
-        "-", "rail loss factor eta_r (EI -> EI (1 + i eta_r))", default=0.0, ge=0.0
+        "-", "rail loss factor eta_r (EI -> EI (1 + i eta_r))", default=0.0, ge=0.0, le=1.0
     )
     shear_stiffness: float | None = parameter(
         "N",
@@ -87,12 +100,14 @@ class Rail:
         default=None,
         kind="number",
         gt=0.0,
+        le=1e20,  # far above any rail (2.45e8), so a near-rigid shear (Euler limit) is allowed
     )
     rotary_inertia: float = parameter(
         "kg m",
         "rho I, rotary inertia per length of a Timoshenko rail (CHN60: 0.2525)",
         default=0.0,
         ge=0.0,
+        le=1e3,
     )
 
     def __post_init__(self) -> None:
@@ -175,12 +190,48 @@ class PeriodicTrack(TrackModel):
     pad_temperature: float | None = None
 
     def __post_init__(self) -> None:
-        d = self.sleeper_spacing
-        if not (np.isfinite(d) and d > 0):
-            raise CaseError("track.sleeper_spacing", d, "must be > 0 (m)")
+        spacing, temperature = RIGID_BASE_PARAMETERS[0], RIGID_BASE_PARAMETERS[3]
+        check_value(spacing, self.sleeper_spacing, "track.sleeper_spacing")
+        if self.pad_temperature is not None:
+            check_value(temperature, self.pad_temperature, "track.pad_temperature_c")
+
+    @property
+    def max_frequency_hz(self) -> float:
+        """Highest frequency the track is solved at, Hz (see :data:`MAX_BAY_WAVENUMBER`)."""
+        d, rail = self.sleeper_spacing, self.rail
+        stiffness = abs(rail.complex_bending_stiffness)
+        # in this order, so a tiny spacing gives inf rather than a division by d**4 = 0
+        omega = MAX_BAY_WAVENUMBER**2 * float(np.sqrt(stiffness / rail.mass_per_length)) / d / d
+        return omega / (2.0 * np.pi)
+
+    def check_frequencies(self, f: ArrayLike) -> None:
+        """Refuse frequencies above :attr:`max_frequency_hz` (named as ``frequency.f_max``).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+
+        Raises
+        ------
+        CaseError
+            Naming the highest frequency and the limit for this rail and sleeper spacing.
+        """
+        f_top = float(np.max(f, initial=0.0))
+        limit = self.max_frequency_hz
+        if f_top > limit:
+            raise CaseError(
+                "frequency.f_max",
+                f_top,
+                f"at most {limit:.4g} Hz for this rail and sleeper spacing (the rail's bending "
+                f"wavenumber times the spacing reaches {MAX_BAY_WAVENUMBER:g} there, beyond "
+                "what the bay's series can hold); lower f_max or check track.sleeper_spacing "
+                "and track.rail (Hz)",
+            )
 
     # -- dimensionless kernels ------------------------------------------------------------
     def _beta4(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
+        self.check_frequencies(f)
         omega = 2.0 * np.pi * f
         d = self.sleeper_spacing
         beta4 = self.rail.mass_per_length * omega**2 * d**4 / self.rail.complex_bending_stiffness
@@ -485,7 +536,7 @@ def _bay(x: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]
 def _entries(a: NDArray[np.complex128]) -> Any:
     """Entries of a stack ``(n, *shape)`` as contiguous ``(n,)`` arrays in lists nested by `shape`.
 
-    The stacked layout of the kernels (docs/design/0005-stacked-batches.md): each entry of
+    The stacked layout of the kernels (docs/design/0006-stacked-batches.md): each entry of
     the small matrices is one contiguous array over the stack, so every operation is one
     vectorised pass instead of a loop over tiny matrices.
     """
@@ -583,7 +634,7 @@ def _energy_flux(vec: NDArray[np.complex128]) -> NDArray[np.float64]:
 
 #: keys of the ``[track]`` table of the rigid-base track
 RIGID_BASE_PARAMETERS = (
-    Parameter("sleeper_spacing", "m", "sleeper spacing d", gt=0.0, typical=(0.5, 0.75)),
+    Parameter("sleeper_spacing", "m", "sleeper spacing d", gt=0.0, le=3.0, typical=(0.5, 0.75)),
     Parameter("rail", "", "the rail beam", "table", table=Rail),
     Parameter("pad", "N/m", "railpad model of one rail seat", "member", family=PADS),
     Parameter(
@@ -592,6 +643,7 @@ RIGID_BASE_PARAMETERS = (
         "pad temperature used by temperature-dependent pad models",
         default=None,
         gt=-273.15,
+        le=1000.0,
     ),
 )
 

@@ -13,9 +13,9 @@ from railvib.vehicle.parts import Attachment, RigidBody, Suspension, Wheel
 __all__ = ["PitchPlaneParameters", "pitch_plane_10dof"]
 
 
-def _positive(unit: str, doc: str, typical: tuple[float, float]) -> float:
-    """A parameter that must be > 0, plausible over `typical` (log-uniform)."""
-    return parameter(unit, doc, gt=0.0, typical=typical, log=True)
+def _positive(unit: str, doc: str, typical: tuple[float, float], le: float) -> float:
+    """A parameter that must be > 0 and <= `le`, plausible over `typical` (log-uniform)."""
+    return parameter(unit, doc, gt=0.0, le=le, typical=typical, log=True)
 
 
 @VEHICLES.register("pitch_plane_10dof")
@@ -52,28 +52,34 @@ class PitchPlaneParameters(VehicleModel):
         l_t, half the wheelbase of a bogie, m.
     """
 
-    carbody_mass: float = _positive("kg", "car body mass M_c", (1e4, 6e4))
-    carbody_pitch_inertia: float = _positive("kg m^2", "car body pitch inertia J_c", (2e5, 3e6))
-    bogie_mass: float = _positive("kg", "mass of one bogie frame M_t", (1e3, 4e3))
-    bogie_pitch_inertia: float = _positive("kg m^2", "pitch inertia of one bogie J_t", (1e3, 5e3))
-    wheelset_mass: float = _positive("kg", "mass of one wheelset M_w", (8e2, 2.5e3))
+    # upper bounds: some 10-100 times any rail vehicle's value (a 100 t car, a 27 m car
+    # body), so that no real car is refused and every product of them stays finite
+    carbody_mass: float = _positive("kg", "car body mass M_c", (1e4, 6e4), 1e6)
+    carbody_pitch_inertia: float = _positive(
+        "kg m^2", "car body pitch inertia J_c", (2e5, 3e6), 1e9
+    )
+    bogie_mass: float = _positive("kg", "mass of one bogie frame M_t", (1e3, 4e3), 1e5)
+    bogie_pitch_inertia: float = _positive(
+        "kg m^2", "pitch inertia of one bogie J_t", (1e3, 5e3), 1e6
+    )
+    wheelset_mass: float = _positive("kg", "mass of one wheelset M_w", (8e2, 2.5e3), 1e5)
     primary_stiffness: float = _positive(
-        "N/m", "primary suspension stiffness per wheelset K_s1", (3e5, 5e6)
+        "N/m", "primary suspension stiffness per wheelset K_s1", (3e5, 5e6), 1e10
     )
     primary_damping: float = parameter(
-        "N s/m", "primary damping per wheelset C_s1", ge=0.0, typical=(1e2, 5e4), log=True
+        "N s/m", "primary damping per wheelset C_s1", ge=0.0, le=1e8, typical=(1e2, 5e4), log=True
     )
     secondary_stiffness: float = _positive(
-        "N/m", "secondary suspension stiffness per bogie K_s2", (1e5, 1e6)
+        "N/m", "secondary suspension stiffness per bogie K_s2", (1e5, 1e6), 1e10
     )
     secondary_damping: float = parameter(
-        "N s/m", "secondary damping per bogie C_s2", ge=0.0, typical=(1e3, 1e5), log=True
+        "N s/m", "secondary damping per bogie C_s2", ge=0.0, le=1e8, typical=(1e3, 1e5), log=True
     )
     bogie_half_spacing: float = parameter(
-        "m", "half the distance between bogie centres l_c", gt=0.0, typical=(4.0, 10.0)
+        "m", "half the distance between bogie centres l_c", gt=0.0, le=50.0, typical=(4.0, 10.0)
     )
     wheelset_half_spacing: float = parameter(
-        "m", "half the wheelbase of a bogie l_t", gt=0.0, typical=(0.9, 1.5)
+        "m", "half the wheelbase of a bogie l_t", gt=0.0, le=10.0, typical=(0.9, 1.5)
     )
 
     def validate(self) -> None:
