@@ -19,9 +19,8 @@ the displacement's).
 
 from __future__ import annotations
 
-from typing import Any
-
 from collections.abc import Iterable, Mapping
+from typing import Any
 
 import xarray as xr
 

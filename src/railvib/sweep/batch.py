@@ -168,13 +168,15 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     f = build_grid(case_from_dict(base, warn=False)).f
     cases, groups = _chunk_cases(spec, layout, chunk_id)
     frf, s_r, loads = _solve_groups(f, cases, groups)
-    out: dict[str, NDArray[Any]] = dict(compute_variables(frf, s_r, spec.variables))
-    psd_force = np.asarray(compute_variables(frf, s_r, ["psd_force"])["psd_force"], dtype=float)
+    needed = dict.fromkeys([*spec.variables, "psd_force", spec.summary_variable])
+    values = compute_variables(frf, s_r, needed)  # each variable computed once
+    out: dict[str, NDArray[Any]] = {name: values[name] for name in spec.variables}
+    psd_force = np.asarray(values["psd_force"], dtype=float)
     check = contact_check(f, psd_force, loads, spec.loss_of_contact_threshold)
     for name in CONTACT_SUMMARY:
         out[f"summary/{name}"] = check[name].values
-    target = compute_variables(frf, s_r, [spec.summary_variable])[spec.summary_variable]
-    out.update(_summary(f, np.asarray(target, dtype=float), spec.rms_bands))
+    target = np.asarray(values[spec.summary_variable], dtype=float)
+    out.update(_summary(f, target, spec.rms_bands))
     return out
 
 

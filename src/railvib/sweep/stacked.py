@@ -26,7 +26,7 @@ from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
-from railvib.stack import dot, entries, put, solve, to_numpy
+from railvib.stack import dot, put, solve, to_numpy
 from railvib.track.stacked import receptance_entries, stacked_waves
 from railvib.vehicle.assembly import WheelCondensation
 
@@ -118,7 +118,19 @@ def frf_pad_stack(
     delays = vehicle.wheel_offsets[None, :] / speeds[:, None]  # (n_case, n_w)
     phase = -2j * np.pi * f[None, :, None] * delays[:, None, :]
     excitation = np.exp(phase)  # (n_case, n_freq, n_w)
-    u_v, rail, force = _coupled_stack(cond, rec, system.contact_stiffness, excitation, which)
+    per_track = rec.reshape(len(distinct), f.size, x.size, x.size)
+    step = max(1, FREQUENCY_BLOCK // f.size)  # cases per cache-sized block
+    parts = [
+        _coupled_stack(
+            cond,
+            per_track,
+            system.contact_stiffness,
+            excitation[c : c + step],
+            which[c : c + step],
+        )
+        for c in range(0, n_case, step)
+    ]
+    u_v, rail, force = (np.concatenate([p[i] for p in parts]) for i in range(3))
     return FRF(f, u_v, rail, force, vehicle.dofs)
 
 
@@ -132,12 +144,11 @@ def _coupled_stack(
 ) -> tuple[Any, Any, Any]:
     """:func:`railvib.coupling.coupled_response` on entries ``(n_case, n_freq)``.
 
-    `receptance` holds ``(n_track * n_freq, n_w, n_w)``, the track solutions; case ``c``
+    `receptance` holds ``(n_track, n_freq, n_w, n_w)``, the track solutions; case ``c``
     uses number ``which[c]``. The vehicle's entries ``(n_freq,)`` broadcast over the cases.
     """
-    n_freq = excitation.shape[1]
-    n_track = receptance.shape[0] // n_freq
-    rec = [[r.reshape(n_track, n_freq)[which] for r in row] for row in entries(receptance, xp)]
+    n = receptance.shape[-1]
+    rec = [[receptance[which, :, a, b] for b in range(n)] for a in range(n)]
     return _coupled_entries(vehicle, rec, contact_stiffness, excitation, xp)
 
 
