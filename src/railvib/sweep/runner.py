@@ -383,9 +383,11 @@ def _worker_init(client_pid: int) -> None:
 
     The client (the sweep's main process) stops the pool on Ctrl-C and keeps the
     finished chunks. Should it be killed (SIGKILL), nothing would stop the workers,
-    the fork server and the resource tracker (each holds the others' pipes open):
-    the worker gets SIGTERM when its parent dies (Linux ``PR_SET_PDEATHSIG``) and a
-    watchdog thread ends it when the client is gone.
+    the fork server and the resource tracker (each holds the others' pipes open): a
+    watchdog thread ends the worker within half a second of the client (POSIX), and
+    the worker gets SIGTERM when its parent, the fork server, dies (Linux
+    ``PR_SET_PDEATHSIG``). The fork server and the resource tracker then end by
+    themselves, their last client gone.
 
     Parameters
     ----------
@@ -396,10 +398,11 @@ def _worker_init(client_pid: int) -> None:
     if sys.platform.startswith("linux"):
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0)
-    watchdog = threading.Thread(
-        target=_watch_client, args=(client_pid,), name="railvib-watchdog", daemon=True
-    )
-    watchdog.start()
+    if os.name == "posix":  # on Windows os.kill(pid, 0) would end the client
+        watchdog = threading.Thread(
+            target=_watch_client, args=(client_pid,), name="railvib-watchdog", daemon=True
+        )
+        watchdog.start()
 
 
 def _watch_client(client_pid: int) -> None:

@@ -134,7 +134,7 @@ def _read_manifest(path: Path) -> tuple[dict[str, Any], str | None]:
 
 def _read_chunk_stamp(path: Path) -> str:
     """The fingerprint stamped in a chunk file, after reading every array (CRC-checked)."""
-    with np.load(path, allow_pickle=False) as z:
+    with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as z:  # closed if not a zip
         for name in z.files:
             z[name]  # noqa: B018  (reading checks the member's CRC and .npy header)
         return str(z["fingerprint"])
