@@ -402,6 +402,42 @@ def test_a_silent_server_times_out_after_scheduler_timeout(sweep_file, tmp_path,
     assert not (tmp_path / "out").exists()
 
 
+# ------------------------------------------------------------------- start-up and exit
+
+
+def _python(code, *args):
+    return subprocess.run(
+        [sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=60
+    )
+
+
+def test_ctrl_c_while_the_command_line_imports_is_aborted_exit_130():
+    # the signal lands before main() runs (in a terminal: the first ~0.1 s)
+    done = _python(
+        "import os, signal, time\n"
+        "import railvib.cli.main\n"
+        "os.kill(os.getpid(), signal.SIGINT)\n"
+        "time.sleep(5)\n"
+    )
+    assert done.returncode == 130
+    assert done.stderr.split() == ["aborted"], done.stderr
+
+
+def test_ctrl_c_after_the_command_has_ended_keeps_its_exit_code():
+    # the interpreter only shuts down then; a signal must not turn 0 into 130 or -2
+    done = _python(
+        "import os, signal, sys, time\n"
+        "from railvib.cli.main import main\n"
+        "code = main()\n"
+        "os.kill(os.getpid(), signal.SIGINT)\n"
+        "time.sleep(0.2)\n"
+        "sys.exit(code)\n",
+        "presets",
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+
+
 # ------------------------------------------------------------------- processes, slow
 
 #: a sweep long enough to be mid-run at every signal time below (120 chunks, 2 workers)
