@@ -12,6 +12,7 @@ from typing import Any
 
 __all__ = [
     "CaseError",
+    "DamagedOutputWarning",
     "LinearModelInvalid",
     "NonFiniteResult",
     "OutputError",
@@ -146,6 +147,15 @@ class PlausibilityWarning(UserWarning):
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (type(self), (self.field, self.value, self.note))
+
+
+class DamagedOutputWarning(UserWarning):
+    """A file an earlier run left is damaged (truncated, unreadable); railvib rewrites it.
+
+    E.g. a sweep chunk file cut short by a full disk: it is recomputed. The message
+    names the file and what is done about it, on one line, and the CLI prints it as
+    ``warning: <message>``.
+    """
 
 
 class SolverWarning(RuntimeWarning):

@@ -3,16 +3,45 @@
 from __future__ import annotations
 
 import os
+import signal
 import sys
+import threading
 import traceback
 import warnings
 from pathlib import Path
+from types import TracebackType
 from typing import Any
 
-import click
 
-from railvib.cli.options import output_option
-from railvib.errors import PlausibilityWarning, RailvibError
+def _quiet_interrupt(hook: Any) -> Any:
+    """`hook` (a ``sys.excepthook``) ending an uncaught Ctrl-C with "aborted", exit code 130.
+
+    Ctrl-C while the command line is still importing (before :func:`main` runs) or
+    outside click's handling would otherwise print a KeyboardInterrupt traceback.
+    Nothing has been written then, so the process ends at once.
+    """
+
+    def _hook(kind: type[BaseException], exc: BaseException, tb: TracebackType | None) -> None:
+        if not issubclass(kind, KeyboardInterrupt):
+            hook(kind, exc, tb)
+            return
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os.write(2, b"\naborted\n")
+        os._exit(130)
+
+    return _hook
+
+
+sys.excepthook = _quiet_interrupt(sys.excepthook)
+
+import click  # noqa: E402  (after the hook: Ctrl-C during these imports is quiet)
+
+from railvib.cli.options import output_option  # noqa: E402
+from railvib.errors import DamagedOutputWarning, PlausibilityWarning, RailvibError  # noqa: E402
 
 __all__ = ["cli", "main"]
 
@@ -122,7 +151,7 @@ def _one_line(show: Any) -> Any:
     """`show` (a ``warnings.showwarning``) printing a PlausibilityWarning as one line."""
 
     def _show(message: Warning | str, category: type[Warning], *args: Any, **kw: Any) -> None:
-        if issubclass(category, PlausibilityWarning):
+        if issubclass(category, PlausibilityWarning | DamagedOutputWarning):
             click.echo(f"warning: {message}", err=True)  # no file name, no source line
         else:
             show(message, category, *args, **kw)
@@ -146,7 +175,22 @@ def main(argv: list[str] | None = None) -> int:
         linear model (:class:`~railvib.errors.LinearModelInvalid`), 130 when aborted, 2
         for a system error no command names (standard output on a full disk), 141 when
         standard output is a closed pipe, else click's code.
+
+    Notes
+    -----
+    Called as the program (`argv` None), Ctrl-C is ignored once the command has ended:
+    the interpreter only shuts down then, and a signal would kill it mid-way (exit
+    status -2 instead of the command's code).
     """
+    try:
+        return _main(argv)
+    finally:
+        if argv is None and threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _main(argv: list[str] | None) -> int:
+    """:func:`main` without the handling of the process's end."""
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _one_line(warnings.showwarning)
@@ -154,11 +198,12 @@ def main(argv: list[str] | None = None) -> int:
     except RailvibError as exc:
         click.echo(f"error: {exc}", err=True)
         return exc.exit_code
-    except PlausibilityWarning as exc:  # escalated by -W error
+    except (PlausibilityWarning, DamagedOutputWarning) as exc:  # escalated by -W error
         click.echo(f"error: {exc}", err=True)
         return 2
-    except click.exceptions.Abort:
-        click.echo("aborted", err=True)
+    except click.exceptions.Abort as exc:  # Ctrl-C; a command may say what was kept
+        click.echo(f"aborted: {exc}" if str(exc) else "aborted", err=True)
+        _forget_interrupt()
         return 130
     except click.UsageError as exc:
         click.echo(f"error: {_usage_line(exc)}", err=True)
@@ -194,6 +239,21 @@ def _stdout_to_devnull() -> None:
         os.close(devnull)
     except (OSError, ValueError, AttributeError):  # stdout replaced (tests) or closed
         pass
+
+
+def _forget_interrupt() -> None:
+    """Let a handled Ctrl-C end with exit code 130, not with death by SIGINT.
+
+    CPython remembers a KeyboardInterrupt that left code run by ``exec`` of a string
+    (scipy's imports do that) and, once the interpreter has finished, kills itself with
+    SIGINT instead of exiting with the code given (exit status -2 instead of 130, one
+    Ctrl-C in six during start-up); running any string of code clears that memory.
+    """
+    import ctypes
+
+    api = getattr(ctypes, "pythonapi", None)  # CPython only
+    if api is not None:
+        api.PyRun_SimpleString(b"pass")
 
 
 def _usage_line(exc: click.UsageError) -> str:

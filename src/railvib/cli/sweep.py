@@ -53,6 +53,14 @@ def sweep() -> None:
     default=None,
     help="Dask distributed scheduler, e.g. tcp://10.0.0.1:8786",
 )
+@click.option(
+    "--scheduler-timeout",
+    type=click.FloatRange(min=0.0, min_open=True),
+    default=5.0,
+    show_default=True,
+    metavar="SECONDS",
+    help="how long to wait for the Dask scheduler to answer",
+)
 @click.option("--plot", "make_plots", is_flag=True, help="draw summary plots into OUT/plots")
 @click.option("--netcdf", "netcdf", is_flag=True, help="also write OUT/sweep.nc")
 @click.option("--csv", "csv", is_flag=True, help="also write the summary as OUT/summary.csv")
@@ -73,6 +81,7 @@ def run_command(
     outdir: Path | None,
     workers: int | None,
     scheduler: str | None,
+    scheduler_timeout: float,
     make_plots: bool,
     netcdf: bool,
     csv: bool,
@@ -85,6 +94,7 @@ def run_command(
     from railvib.outputs import is_linear_model_valid
     from railvib.sweep import (
         check_scheduler,
+        connect_scheduler,
         default_output_folder,
         describe_run,
         linear_model_line,
@@ -93,26 +103,25 @@ def run_command(
         save_sweep_extras,
     )
 
+    check_scheduler(scheduler)  # the address's form, before anything is read or written
     spec = load_sweep(sweep_file)
-    check_scheduler(scheduler)  # before anything is said or written
     out = outdir if outdir is not None else default_output_folder(sweep_file)
-    click.echo(describe_run(spec, out, scheduler=scheduler), err=True)
-    try:
-        ds = run_sweep(
-            spec,
-            out,
-            workers=workers,
-            scheduler=scheduler,
-            progress=not no_progress,
-            overwrite=overwrite,
-        )
-    except KeyboardInterrupt:
-        click.echo(
-            f"\ninterrupted; finished chunks are kept in {out}/chunks - rerun the same "
-            "command to resume",
-            err=True,
-        )
-        raise
+    with connect_scheduler(scheduler, scheduler_timeout) as client:  # before anything is said
+        click.echo(describe_run(spec, out, scheduler=scheduler), err=True)
+        try:
+            ds = run_sweep(
+                spec,
+                out,
+                workers=workers,
+                scheduler=client,
+                progress=not no_progress,
+                overwrite=overwrite,
+            )
+        except KeyboardInterrupt:
+            click.echo(err=True)  # end the ^C line
+            raise click.Abort(
+                f"finished chunks are kept in {out}/chunks - rerun the same command to resume"
+            ) from None
     assert ds is not None  # run_sweep assembles by default
     for path in save_sweep_extras(ds, out, netcdf=netcdf, csv=csv, plots=make_plots):
         click.echo(f"written {path}", err=True)

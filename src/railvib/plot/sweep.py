@@ -184,8 +184,10 @@ def plot_sweep(
                 )
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"{long_name} [{unit}]")
-        if variable not in ("dominant_frequency", "linear_model_valid"):
-            ax.set_yscale("log")
+        values = np.asarray(da.values, dtype=float)
+        positive = np.isfinite(values) & (values > 0)
+        if variable not in ("dominant_frequency", "linear_model_valid") and positive.any():
+            ax.set_yscale("log")  # not when nothing is > 0 (all zero, or NaN in a damaged store)
         ax.legend(fontsize="small")
         ax.grid(True, which="both", alpha=0.3)
     else:

@@ -23,7 +23,14 @@ from railvib.sweep.dataset import (
     sweep_dataset,
 )
 from railvib.sweep.layout import SweepLayout
-from railvib.sweep.runner import SweepInterrupted, check_scheduler, describe_run, run_sweep
+from railvib.sweep.runner import (
+    SchedulerUnreachable,
+    SweepInterrupted,
+    check_scheduler,
+    connect_scheduler,
+    describe_run,
+    run_sweep,
+)
 from railvib.sweep.spec import SweepAxis, SweepSpec, load_sweep, sweep_from_dict
 from railvib.sweep.store import (
     ChunkStore,
@@ -35,12 +42,14 @@ from railvib.sweep.store import (
 
 __all__ = [
     "ChunkStore",
+    "SchedulerUnreachable",
     "SweepInterrupted",
     "SweepLayout",
     "SweepAxis",
     "SweepMismatchError",
     "SweepSpec",
     "check_scheduler",
+    "connect_scheduler",
     "compute_chunk",
     "default_output_folder",
     "default_plot_folder",

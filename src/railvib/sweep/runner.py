@@ -7,14 +7,22 @@ identical bit for bit. Only this (client) process writes chunk files.
 
 from __future__ import annotations
 
+import asyncio
+import ctypes
 import multiprocessing as mp
+import multiprocessing.forkserver
+import multiprocessing.resource_tracker
 import os
+import re
 import signal
+import socket
 import sys
-from collections.abc import Callable, Iterator
+import threading
+import time
+from collections.abc import Callable, Generator, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
-from contextlib import AbstractContextManager, nullcontext
+from contextlib import AbstractContextManager, closing, contextmanager, nullcontext
 from pathlib import Path
 from typing import Any
 
@@ -28,16 +36,45 @@ from railvib.sweep.progress import case_progress
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.store import ChunkStore
 
-__all__ = ["SweepInterrupted", "check_scheduler", "describe_run", "run_sweep"]
+__all__ = [
+    "CONNECT_TIMEOUT_S",
+    "SchedulerUnreachable",
+    "SweepInterrupted",
+    "check_scheduler",
+    "connect_scheduler",
+    "describe_run",
+    "run_sweep",
+]
 
 #: how to install what a Dask cluster needs (the ``sweep`` extra: dask[distributed])
 INSTALL_SWEEP_EXTRA = 'pip install "railvib[sweep]"'
 
 ChunkResult = tuple[int, dict[str, NDArray[Any]]]
 
+#: seconds :func:`connect_scheduler` waits for a Dask scheduler to answer by default
+CONNECT_TIMEOUT_S = 5.0
+
+#: the address schemes of Dask's communication backends (``distributed.comm``)
+_SCHEMES = ("tcp", "tls", "ws", "wss", "ucx")
+
+#: ``[SCHEME://]HOST:PORT``; HOST a name, an IPv4 address or an IPv6 one in brackets
+_ADDRESS = re.compile(
+    r"^(?:(?P<scheme>[a-z]+)://)?(?P<host>\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):(?P<port>\d{1,5})$"
+)
+
+#: what --scheduler accepts, for messages
+_ADDRESS_HELP = (
+    "a Dask scheduler address (--scheduler) HOST:PORT or SCHEME://HOST:PORT, SCHEME one of "
+    f"{', '.join(_SCHEMES)}, PORT 1-65535, e.g. tcp://10.0.0.1:8786"
+)
+
 
 class SweepInterrupted(RailvibError):
     """A worker died or the run was stopped; finished chunks are kept."""
+
+
+class SchedulerUnreachable(RailvibError):
+    """The Dask scheduler given did not answer (nothing was computed or written)."""
 
 
 def _compute(spec: SweepSpec, chunk_id: int) -> ChunkResult:
@@ -45,7 +82,7 @@ def _compute(spec: SweepSpec, chunk_id: int) -> ChunkResult:
 
 
 def check_scheduler(scheduler: Any) -> None:
-    """Refuse a Dask scheduler when ``distributed`` is not installed, before any work.
+    """Refuse a malformed scheduler address, or one without ``distributed``, before any work.
 
     Local runs (any number of worker processes) use :mod:`concurrent.futures` and need
     nothing extra; only a cluster needs the optional ``sweep`` dependencies.
@@ -53,16 +90,21 @@ def check_scheduler(scheduler: Any) -> None:
     Parameters
     ----------
     scheduler : str, distributed.Client or None
-        The scheduler of :func:`run_sweep` (None: local processes, nothing to check).
+        The scheduler of :func:`run_sweep` (None: local processes, nothing to check):
+        an address ``HOST:PORT`` or ``SCHEME://HOST:PORT`` (SCHEME ``tcp``, ``tls``,
+        ``ws``, ``wss`` or ``ucx``), or a client.
 
     Raises
     ------
     CaseError
-        ``scheduler = '<address>': needs the Dask "distributed" package: pip install
-        "railvib[sweep]"``.
+        ``scheduler = 'tcp:/x': a Dask scheduler address (--scheduler) HOST:PORT or
+        ...``, or ``scheduler = '<address>': needs the Dask "distributed" package: pip
+        install "railvib[sweep]"``.
     """
     if scheduler is None:
         return
+    if isinstance(scheduler, str):
+        _check_address(scheduler)
     try:
         import distributed  # noqa: F401  (the optional dependency of Dask runs)
     except ImportError:
@@ -71,6 +113,92 @@ def check_scheduler(scheduler: Any) -> None:
             scheduler if isinstance(scheduler, str) else type(scheduler).__name__,
             f'a Dask cluster needs the "distributed" package: {INSTALL_SWEEP_EXTRA}',
         ) from None
+
+
+def _check_address(address: str) -> tuple[str, str, int]:
+    """``(scheme, host, port)`` of a scheduler address; a CaseError if it is malformed."""
+    m = _ADDRESS.match(address.strip())
+    port = int(m.group("port")) if m else 0
+    scheme = (m.group("scheme") or "tcp") if m else ""
+    if m is None or scheme not in _SCHEMES or not 1 <= port <= 65535:
+        raise CaseError("scheduler", address, _ADDRESS_HELP)
+    return scheme, m.group("host").strip("[]"), port
+
+
+@contextmanager
+def connect_scheduler(scheduler: Any, timeout: float = CONNECT_TIMEOUT_S) -> Iterator[Any]:
+    """Connect to a Dask scheduler within `timeout` seconds, or say that it cannot be reached.
+
+    Parameters
+    ----------
+    scheduler : str, distributed.Client or None
+        An address (checked by :func:`check_scheduler`), a client (used as it is, not
+        closed), or None (local processes: yields None).
+    timeout : float
+        Time to wait for the scheduler to accept the connection and answer (s, > 0).
+
+    Yields
+    ------
+    distributed.Client or None
+        The client, closed on leaving the block when this function opened it.
+
+    Raises
+    ------
+    CaseError
+        A malformed address, or ``distributed`` not installed.
+    SchedulerUnreachable
+        ``cannot reach the Dask scheduler at tcp://HOST:PORT within 5 s (why); ...``:
+        nothing listens there, the host is unknown, or what answers is not a Dask
+        scheduler.
+    """
+    check_scheduler(scheduler)
+    if not isinstance(scheduler, str):
+        yield scheduler
+        return
+    if not timeout > 0:
+        raise CaseError("scheduler timeout", timeout, "> 0 (s)")
+    client = _open_client(scheduler, float(timeout))
+    try:
+        yield client
+    finally:
+        client.close()
+
+
+def _open_client(address: str, timeout: float) -> Any:
+    """A ``distributed.Client`` of `address`, or SchedulerUnreachable after `timeout` seconds."""
+    from distributed import Client
+
+    scheme, host, port = _check_address(address)
+
+    def unreachable(why: str) -> SchedulerUnreachable:
+        return SchedulerUnreachable(
+            f"cannot reach the Dask scheduler at {address} within {timeout:g} s ({why}); check "
+            "the address and that the scheduler runs (dask scheduler), or give more time "
+            "with --scheduler-timeout"
+        )
+
+    if scheme != "ucx":  # every other backend runs over TCP: a refused port fails at once
+        try:
+            socket.create_connection((host, port), timeout=timeout).close()
+        except OSError as exc:
+            raise unreachable(exc.strerror or type(exc).__name__) from None
+    # Dask's handshake, bounded: a Client made for a server that is not a Dask scheduler
+    # (silent, or sending anything) hangs or fails, then hangs again when it is collected
+    try:
+        asyncio.run(asyncio.wait_for(_handshake(address, timeout), timeout))
+    except TimeoutError:
+        raise unreachable("it accepts connections but does not answer") from None
+    except Exception as exc:  # noqa: BLE001  (whatever a foreign server makes Dask raise)
+        raise unreachable(f"what answers is not a Dask scheduler: {type(exc).__name__}") from None
+    return Client(address, timeout=timeout, set_as_default=False)
+
+
+async def _handshake(address: str, timeout: float) -> None:
+    """Open and close one Dask connection to `address` (its handshake included)."""
+    from distributed.comm import connect
+
+    comm = await connect(address, timeout=timeout)
+    await comm.close()
 
 
 def describe_run(spec: SweepSpec, out: str | Path, *, scheduler: str | None = None) -> str:
@@ -104,6 +232,7 @@ def run_sweep(
     progress: bool = True,
     overwrite: bool = False,
     assemble: bool = True,
+    scheduler_timeout: float = CONNECT_TIMEOUT_S,
 ) -> xr.Dataset | None:
     """Compute the missing chunks of a sweep and assemble its Zarr store.
 
@@ -125,6 +254,9 @@ def run_sweep(
         Discard chunks of a different sweep in `out` instead of refusing.
     assemble : bool
         Write ``sweep.zarr`` and return the dataset when all chunks are done.
+    scheduler_timeout : float
+        Time to wait for the Dask scheduler at address `scheduler` to answer (s)
+        (:func:`connect_scheduler`), before anything is written.
 
     Returns
     -------
@@ -138,31 +270,47 @@ def run_sweep(
     SweepInterrupted
         A local worker process died; rerun to resume.
     CaseError
-        A `scheduler` given without Dask's ``distributed`` installed (checked first).
+        A malformed `scheduler` address, or one given without Dask's ``distributed``
+        installed (checked first).
+    SchedulerUnreachable
+        The scheduler at address `scheduler` does not answer (nothing is written).
     """
-    check_scheduler(scheduler)
-    store = ChunkStore(out, spec)
-    store.open(overwrite=overwrite)
-    todo = store.missing()
-    lay = store.layout
-    sizes = {cid: _n(lay.chunk_shape(cid)) for cid in todo}
-    # with `assemble`, each chunk goes into sweep.zarr as it arrives (overlapped with compute)
-    with (
-        store.streaming(assemble),
-        _progress(progress, lay.n_cases, lay.n_cases - sum(sizes.values())) as advance,
-    ):
-        if scheduler is not None:
-            results = _dask(spec, todo, scheduler)
-        elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
-            results = (_compute(spec, cid) for cid in todo)
-        else:
-            results = _local(spec, todo, workers or os.cpu_count() or 1)
-        for cid, arrays in results:
-            store.write(cid, arrays)
-            advance(sizes[cid])
+    with connect_scheduler(scheduler, scheduler_timeout) as client:  # before any file
+        store = ChunkStore(out, spec)
+        store.open(overwrite=overwrite)
+        todo = store.missing()
+        lay = store.layout
+        sizes = {cid: _n(lay.chunk_shape(cid)) for cid in todo}
+        done_before = lay.n_cases - sum(sizes.values())
+        # with `assemble`, each chunk goes into sweep.zarr as it arrives (overlapped with
+        # compute); the store in progress is removed if the run stops
+        with (
+            store.streaming(assemble),
+            _progress(progress, lay.n_cases, done_before) as advance,
+            # closed at once on any exception (Ctrl-C while a chunk is written): the pool
+            # stops now, not when the traceback is collected at exit, half-started workers
+            # and all
+            closing(_results(spec, todo, client, workers)) as results,
+        ):
+            for cid, arrays in results:
+                store.write(cid, arrays)
+                advance(sizes[cid])
     if not assemble:
         return None
     return store.finish_zarr()
+
+
+def _results(
+    spec: SweepSpec, todo: list[int], client: Any, workers: int | None
+) -> Generator[ChunkResult, None, None]:
+    """The chunks `todo` as they finish: on `client`, local processes, or in this process."""
+    if client is not None:
+        yield from _dask(spec, todo, client)
+    elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
+        for cid in todo:
+            yield _compute(spec, cid)
+    else:
+        yield from _local(spec, todo, workers or os.cpu_count() or 1)
 
 
 def _n(shape: tuple[int, ...]) -> int:
@@ -180,22 +328,125 @@ def _mp_context() -> Any:
     return mp.get_context("spawn")
 
 
-def _ignore_sigint() -> None:
-    """Leave Ctrl-C to the parent, which stops the pool and keeps the finished chunks."""
+def _start_forkserver(ctx: Any) -> None:
+    """Start the fork server with Ctrl-C blocked, so that only this process sees it.
+
+    A terminal sends Ctrl-C to the whole process group; the fork server, still
+    importing its preload modules, would print a KeyboardInterrupt traceback. It
+    inherits the blocked signal (and ignores it once started), and so do the workers
+    it forks until :func:`_worker_init` ignores it; here the signal is delivered when
+    unblocked.
+    """
+    if ctx.get_start_method() != "forkserver":
+        return
+    # first the resource tracker: starting it unblocks SIGINT (it blocks it for itself)
+    multiprocessing.resource_tracker.ensure_running()
+    with _sigint_deferred():
+        multiprocessing.forkserver.ensure_running()
+
+
+@contextmanager
+def _sigint_deferred() -> Iterator[None]:
+    """Hold back Ctrl-C during the block; one that comes is raised at its end.
+
+    Processes started in the block inherit SIGINT blocked. In this process the signal
+    may land on any thread (BLAS, the pool's), so it is also caught by a handler that
+    only notes it (in the main thread; elsewhere Python cannot set handlers).
+    """
+    masks = hasattr(signal, "pthread_sigmask")  # not on Windows
+    main = threading.current_thread() is threading.main_thread()
+    caught: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda n, _: caught.append(n)) if main else None
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if masks else None
+    try:
+        yield
+    finally:
+        if mask is not None:
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        if main:
+            signal.signal(signal.SIGINT, previous)
+    if caught:
+        if callable(previous):
+            previous(signal.SIGINT, None)
+        elif previous == signal.SIG_DFL:
+            raise KeyboardInterrupt
+
+
+#: ``prctl`` option: the signal a process gets when its parent dies (linux/prctl.h)
+_PR_SET_PDEATHSIG = 1
+
+#: seconds between two checks of a worker that its sweep process still runs
+_WATCH_INTERVAL_S = 0.5
+
+
+def _worker_init(client_pid: int) -> None:
+    """Set up a worker process: Ctrl-C left to the client, and death with it.
+
+    The client (the sweep's main process) stops the pool on Ctrl-C and keeps the
+    finished chunks. Should it be killed (SIGKILL), nothing would stop the workers,
+    the fork server and the resource tracker (each holds the others' pipes open): a
+    watchdog thread ends the worker within half a second of the client (POSIX), and
+    the worker gets SIGTERM when its parent, the fork server, dies (Linux
+    ``PR_SET_PDEATHSIG``). The fork server and the resource tracker then end by
+    themselves, their last client gone.
+
+    Parameters
+    ----------
+    client_pid : int
+        Process id of the sweep's main process.
+    """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0)
+    if os.name == "posix":  # on Windows os.kill(pid, 0) would end the client
+        watchdog = threading.Thread(
+            target=_watch_client, args=(client_pid,), name="railvib-watchdog", daemon=True
+        )
+        watchdog.start()
+
+
+def _watch_client(client_pid: int) -> None:
+    """End this worker process once the process `client_pid` has ended."""
+    while _alive(client_pid):
+        time.sleep(_WATCH_INTERVAL_S)
+    os._exit(1)  # nothing to save: results go to the client, which is gone
+
+
+def _alive(pid: int) -> bool:
+    """Whether process `pid` runs (a zombie, dead but not yet reaped, does not)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return True  # no /proc (not Linux): the signal test is all there is
+    return stat.rpartition(")")[2].split()[:1] != ["Z"]
 
 
 def _local(spec: SweepSpec, todo: list[int], workers: int) -> Iterator[ChunkResult]:
     """Chunks on local processes, at most 2 queued per worker; yields as they finish."""
+    ctx = _mp_context()
+    _start_forkserver(ctx)
     pool = ProcessPoolExecutor(
-        max_workers=min(workers, len(todo)), mp_context=_mp_context(), initializer=_ignore_sigint
+        max_workers=min(workers, len(todo)),
+        mp_context=ctx,
+        initializer=_worker_init,
+        initargs=(os.getpid(),),
     )
     pending: set[Future[ChunkResult]] = set()
     queue = list(reversed(todo))
     try:
         while queue or pending:
             while queue and len(pending) < 2 * workers:
-                pending.add(pool.submit(_compute, spec, queue.pop()))
+                # a submit may start a worker: a Ctrl-C then would leave it half-started
+                # (the pool gone, it prints a traceback); raised once it is started
+                with _sigint_deferred():
+                    pending.add(pool.submit(_compute, spec, queue.pop()))
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
                 try:
@@ -211,29 +462,21 @@ def _local(spec: SweepSpec, todo: list[int], workers: int) -> Iterator[ChunkResu
         pool.shutdown(wait=True, cancel_futures=True)
 
 
-def _dask(spec: SweepSpec, todo: list[int], scheduler: Any) -> Iterator[ChunkResult]:
-    """Chunks on a Dask distributed cluster; yields as they finish."""
-    from distributed import Client, as_completed
+def _dask(spec: SweepSpec, todo: list[int], client: Any) -> Iterator[ChunkResult]:
+    """Chunks on a Dask distributed cluster (through `client`); yields as they finish."""
+    from distributed import as_completed
 
-    own = isinstance(scheduler, str)
-    client = Client(scheduler) if own else scheduler
+    spec_future = client.scatter(spec, broadcast=True)
+    futures = [
+        client.submit(_compute, spec_future, cid, key=f"railvib-chunk-{cid}-{id(spec)}", pure=False)
+        for cid in todo
+    ]
     try:
-        spec_future = client.scatter(spec, broadcast=True)
-        futures = [
-            client.submit(
-                _compute, spec_future, cid, key=f"railvib-chunk-{cid}-{id(spec)}", pure=False
-            )
-            for cid in todo
-        ]
-        try:
-            for fut in as_completed(futures):
-                yield fut.result()
-                fut.release()
-        finally:
-            client.cancel(futures)
+        for fut in as_completed(futures, loop=client.loop):
+            yield fut.result()
+            fut.release()
     finally:
-        if own:
-            client.close()
+        client.cancel(futures)
 
 
 def _progress(

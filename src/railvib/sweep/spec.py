@@ -26,8 +26,8 @@ Every error is a :class:`~railvib.errors.CaseError` naming the field
 :func:`load_sweep` and :func:`sweep_from_dict` return a :class:`SweepSpec`: the
 resolved sweep as a frozen, picklable object (base case after presets and base
 files, every axis with its values). :meth:`SweepSpec.as_dict` gives it back as
-the plain JSON-able dict that is hashed into the sweep's fingerprint and stored
-in the manifest.
+the plain JSON-able dict that is hashed (less the title, which changes no result)
+into the sweep's fingerprint and stored in the manifest.
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
-from railvib.case import Case, build_pad, case_from_dict, load_case, merge_case_dicts
+from railvib.case import Case, build_pad, case_from_dict, merge_case_dicts
 from railvib.case.build import build_grid, build_vehicle
 from railvib.case.errors import case_error
 from railvib.case.plausibility import physical_memory_bytes
@@ -356,8 +356,8 @@ class SweepSpec:
     """A resolved sweep: the base case and the axes over it (frozen, picklable).
 
     Made by :func:`load_sweep` or :func:`sweep_from_dict`, which validate it;
-    it fully determines the results, so :meth:`as_dict` is what the sweep's
-    fingerprint (:func:`railvib.sweep.fingerprint`) hashes.
+    it fully determines the results, so :meth:`as_dict` (less the title) is what
+    the sweep's fingerprint (:func:`railvib.sweep.fingerprint`) hashes.
 
     Parameters
     ----------
@@ -547,6 +547,14 @@ def load_sweep(path: str | Path) -> SweepSpec:
     path = Path(path)
     hint = "docs/sweeps.md shows one"
     data = read_toml(path, "sweep", hint)
+    base = data.get("base")
+    if isinstance(base, str) and _same_file(path.parent / base, path):
+        raise CaseError(
+            "base",
+            base,
+            "a case file, not this sweep file itself: name the case file the sweep varies "
+            '(base = "case.toml"), or give the case inline as a [case] table',
+        )
     if "axes" not in data and "case" not in data and "base" not in data and _CASE_KEYS & set(data):
         raise CaseError(
             "sweep",
@@ -555,6 +563,14 @@ def load_sweep(path: str | Path) -> SweepSpec:
             f'with `railvib run`, or write base = "{path.name}" in a sweep file ({hint})',
         )
     return sweep_from_dict(data, base_dir=path.parent)
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    """Whether paths `a` and `b` name one existing file."""
+    try:
+        return a.samefile(b)
+    except OSError:
+        return False
 
 
 #: top-level keys of a case file (a case given where a sweep file is expected)
@@ -576,7 +592,8 @@ def sweep_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
     SweepSpec
         The base case fully resolved and validated, the axes with their values
         (each value validated against the base case). It fully determines the
-        results; the hash of :meth:`SweepSpec.as_dict` is the sweep's fingerprint.
+        results; the hash of :meth:`SweepSpec.as_dict` (less the title) is the sweep's
+        fingerprint.
 
     Raises
     ------
@@ -634,8 +651,7 @@ def _case_dump(case: Case) -> dict[str, Any]:
 def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
     data: dict[str, Any] = {}
     if spec.base is not None:
-        p = Path(spec.base)
-        data = _case_dump(load_case(p if p.is_absolute() else base_dir / p))
+        data = _load_base(spec.base, base_dir)
         if spec.case and "preset" in spec.case:
             raise CaseError("case.preset", spec.case["preset"], "not allowed together with base")
     if spec.case:
@@ -643,6 +659,18 @@ def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
         # its values the sweep file gives and which it inherits (e.g. the RMS bands)
         data = merge_case_dicts(data, copy.deepcopy(spec.case))
     return _case_dump(case_from_dict(data, base_dir=base_dir))
+
+
+def _load_base(base: str, base_dir: Path) -> dict[str, Any]:
+    """The case file `base` (relative to `base_dir`), resolved; its errors name ``base``."""
+    p = Path(base)
+    path = p if p.is_absolute() else base_dir / p
+    data = read_toml(path, "base", "`railvib template > case.toml` writes a case file")
+    if "axes" in data:
+        raise CaseError(
+            "base", base, "a case file; this is a sweep file ([[axes]]), not the case it varies"
+        )
+    return _case_dump(case_from_dict(data, base_dir=path.parent))
 
 
 def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tuple[SweepAxis, ...]:

@@ -23,6 +23,8 @@ import os
 import re
 import shutil
 import tempfile
+import warnings
+import zipfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -32,8 +34,8 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib.errors import RailvibError
-from railvib.io import atomic_path, railvib_version
+from railvib.errors import DamagedOutputWarning, RailvibError
+from railvib.io import atomic_path, railvib_version, remove_temporaries
 from railvib.sweep.dataset import sweep_dataset
 from railvib.sweep.folder import (
     CSV_NAME,
@@ -56,8 +58,10 @@ __all__ = [
     "ChunkStore",
     "SweepMismatchError",
     "default_output_folder",
+    "data_file_hashes",
     "default_plot_folder",
     "fingerprint",
+    "remove_leftovers",
 ]
 
 _CHUNK_RE = re.compile(r"^chunk-(\d{6,})\.npz$")
@@ -67,26 +71,161 @@ class SweepMismatchError(RailvibError):
     """The output folder holds chunks of a different sweep."""
 
 
+#: what reading a damaged chunk file or manifest raises
+_DAMAGED = (OSError, EOFError, ValueError, KeyError, zipfile.BadZipFile)
+
+#: the sweep's own temporaries (``.<name>.<random>.part`` of :func:`railvib.io.atomic_path`
+#: and :meth:`ChunkStore.begin_zarr`), by sub-folder: the prefixes of their names, or
+#: ``("",)`` for a folder that holds nothing but railvib's files
+_LEFTOVERS: dict[str, tuple[str, ...]] = {
+    ".": ("manifest.json", "sweep.zarr", "sweep.nc", "summary.csv"),
+    "chunks": ("",),
+    PLOTS_NAME: ("",),
+}
+
+
+def remove_leftovers(root: str | Path) -> list[Path]:
+    """Remove the temporary files a killed run left in sweep folder `root`.
+
+    Only railvib's own temporary names (``.sweep.zarr.XXXX.part``,
+    ``.chunk-000003.npz.XXXX.part``, ...; :func:`railvib.io.is_temporary_name`) in the
+    folder, its ``chunks`` and its ``plots`` are touched, through
+    :func:`railvib.io.remove_temporaries`.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        A sweep's output folder (need not exist).
+
+    Returns
+    -------
+    list of pathlib.Path
+        What was removed.
+    """
+    removed = []
+    for sub, prefixes in _LEFTOVERS.items():
+        for prefix in prefixes:
+            removed += remove_temporaries(Path(root) / sub, prefix)
+    return removed
+
+
+def _remove(path: Path) -> None:
+    """Remove a file or a folder (not what a link points to)."""
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        path.unlink(missing_ok=True)
+
+
+def _read_manifest(path: Path) -> tuple[dict[str, Any], str | None]:
+    """The manifest's contents, or ``({}, why)`` when it is damaged."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except UnicodeDecodeError:
+        return {}, "not UTF-8 text"
+    except json.JSONDecodeError as exc:
+        return {}, f"not valid JSON: {exc.msg} at line {exc.lineno}"
+    except OSError as exc:
+        return {}, _reason(exc)
+    if not isinstance(data, dict) or not isinstance(data.get("fingerprint"), str):
+        return {}, "no fingerprint"
+    return data, None
+
+
+def _read_chunk_stamp(path: Path) -> str:
+    """The fingerprint stamped in a chunk file, after reading every array (CRC-checked)."""
+    with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as z:  # closed if not a zip
+        for name in z.files:
+            z[name]  # noqa: B018  (reading checks the member's CRC and .npy header)
+        return str(z["fingerprint"])
+
+
+def _chunk_stamp(path: Path) -> str | None:
+    """The fingerprint of a chunk file; None when it is damaged."""
+    try:
+        return _read_chunk_stamp(path)
+    except _DAMAGED:
+        return None
+
+
+def _reason(exc: BaseException) -> str:
+    """What is wrong with a damaged file, in a few words."""
+    if isinstance(exc, EOFError | zipfile.BadZipFile):
+        return "cut short or not a chunk file"
+    if isinstance(exc, KeyError):
+        return "no fingerprint"
+    text = getattr(exc, "strerror", None) or str(exc)
+    return " ".join(text.split())[:120] or type(exc).__name__
+
+
+def _changed(key: str, old: Any, new: Any) -> str:
+    """``base_case`` -> ``base_case (track.pad.k0_n_per_m, speed_kmh)``: the fields that differ."""
+    if key != "base_case" or not isinstance(old, dict) or not isinstance(new, dict):
+        return key
+    fields = _differing(old, new)
+    shown = ", ".join(fields[:3]) + (", ..." if len(fields) > 3 else "")
+    return f"{key} ({shown})" if fields else key
+
+
+def _differing(old: dict[str, Any], new: dict[str, Any], prefix: str = "") -> list[str]:
+    out: list[str] = []
+    for k in sorted(set(old) | set(new)):
+        a, b = old.get(k), new.get(k)
+        if isinstance(a, dict) and isinstance(b, dict):
+            out += _differing(a, b, f"{prefix}{k}.")
+        elif a != b:
+            out.append(f"{prefix}{k}")
+    return out
+
+
 def fingerprint(spec: SweepSpec) -> str:
-    """SHA-256 of the resolved sweep, the contents of data files it names, and the version.
+    """SHA-256 of what a sweep's results depend on: the resolved sweep, its data files, version.
+
+    The title is left out: it changes no result, so a retitled sweep resumes (and its
+    dataset takes the new title).
 
     Parameters
     ----------
     spec : SweepSpec
         A resolved sweep (:func:`railvib.sweep.spec.sweep_from_dict`); hashed as
-        :meth:`~railvib.sweep.spec.SweepSpec.as_dict`.
+        :meth:`~railvib.sweep.spec.SweepSpec.as_dict` without ``title``.
 
     Returns
     -------
     str
         Hex digest.
     """
-    data = spec.as_dict()
-    files = {p: _file_hash(p) for p in sorted(_data_paths(data))}
+    data = _results_spec(spec)
     blob = json.dumps(
-        {"spec": data, "files": files, "railvib": railvib_version()}, sort_keys=True, default=str
+        {"spec": data, "files": data_file_hashes(spec), "railvib": railvib_version()},
+        sort_keys=True,
+        default=str,
     )
     return hashlib.sha256(blob.encode()).hexdigest()
+
+
+def _results_spec(spec: SweepSpec) -> dict[str, Any]:
+    """:meth:`SweepSpec.as_dict` without what changes no result (the title)."""
+    data = spec.as_dict()
+    del data["title"]
+    return data
+
+
+def data_file_hashes(spec: SweepSpec) -> dict[str, str]:
+    """SHA-256 of each data file the sweep reads (irregularity and pad tables), by path.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        A resolved sweep.
+
+    Returns
+    -------
+    dict of str
+        Hex digest by path as written in the resolved sweep; ``"unreadable"`` for a
+        file that cannot be read.
+    """
+    return {p: _file_hash(p) for p in sorted(_data_paths(spec.as_dict()))}
 
 
 def _data_paths(node: Any) -> set[str]:
@@ -144,6 +283,12 @@ class ChunkStore:
     def open(self, overwrite: bool = False) -> None:
         """Create the folder and manifest, or check that an existing one is this sweep.
 
+        Leftovers of a killed run (the temporary files and folders railvib writes
+        before a rename) are removed first. A damaged manifest is written again when
+        the chunk files, each stamped with the fingerprint, show that the folder is
+        this sweep's (with a :class:`~railvib.errors.DamagedOutputWarning`); an edit
+        that changes no result (the title) only updates the manifest.
+
         Parameters
         ----------
         overwrite : bool
@@ -152,28 +297,54 @@ class ChunkStore:
         Raises
         ------
         SweepMismatchError
-            The folder holds a different sweep (and `overwrite` is false).
+            The folder holds a different sweep (and `overwrite` is false), or its
+            manifest is damaged and its chunk files are not this sweep's.
         """
         manifest = self.root / MANIFEST
+        remove_leftovers(self.root)
         if manifest.exists():
-            try:
-                old = json.loads(manifest.read_text(encoding="utf-8"))
-            except (OSError, ValueError):
-                old = {}
-            if old.get("fingerprint") != self.fingerprint:
+            old, damage = _read_manifest(manifest)
+            if damage is not None:
+                self._repair_manifest(damage, overwrite)
+            elif old.get("fingerprint") != self.fingerprint:
                 if not overwrite:
                     raise SweepMismatchError(self._mismatch_message(old))
                 self._clear()
-        if self.chunk_dir.exists():
-            for tmp in self.chunk_dir.glob(".*.part"):
-                tmp.unlink(missing_ok=True)  # left by a killed run
-        if self.root.exists():
-            for tmp in self.root.glob(".sweep.zarr.*.part"):
-                shutil.rmtree(tmp, ignore_errors=True)  # a store in progress of a killed run
+            elif old != self._manifest():  # e.g. a new title: same results
+                self._write_manifest()
         self.chunk_dir.mkdir(parents=True, exist_ok=True)
         if not manifest.exists():
-            with atomic_path(manifest) as tmp:
-                tmp.write_text(json.dumps(self._manifest(), indent=1, default=str), "utf-8")
+            self._write_manifest()
+
+    def _write_manifest(self) -> None:
+        with atomic_path(self.root / MANIFEST) as tmp:
+            tmp.write_text(json.dumps(self._manifest(), indent=1, default=str), "utf-8")
+
+    def _repair_manifest(self, damage: str, overwrite: bool) -> None:
+        """Rewrite a damaged manifest if the chunks are this sweep's; else refuse or clear."""
+        stamps = [_chunk_stamp(p) for p in self._chunk_files()]
+        foreign = [s for s in stamps if s is not None and s != self.fingerprint]
+        where = self.root / MANIFEST
+        if foreign and not overwrite:
+            raise SweepMismatchError(
+                f"{where} is damaged ({damage}) and {len(foreign)} of the {len(stamps)} chunk "
+                f"files in {self.chunk_dir} belong to a different sweep; use another --output "
+                "folder, or --overwrite to discard them"
+            )
+        if foreign:
+            self._clear()
+            done = "written again; the chunks of the other sweep are discarded (--overwrite)"
+        else:
+            where.unlink()
+            done = "written again" + (
+                f" ({len(stamps)} chunk files of this sweep kept)" if stamps else ""
+            )
+        warnings.warn(f"{where} is damaged ({damage}); {done}", DamagedOutputWarning, stacklevel=3)
+
+    def _chunk_files(self) -> list[Path]:
+        if not self.chunk_dir.is_dir():
+            return []
+        return sorted(p for p in self.chunk_dir.iterdir() if _CHUNK_RE.match(p.name))
 
     def _clear(self) -> None:
         for name in (MANIFEST, ZARR_NAME, "chunks"):
@@ -184,16 +355,29 @@ class ChunkStore:
                 p.unlink()
 
     def _mismatch_message(self, old: dict[str, Any]) -> str:
-        n_done = len(list(self.chunk_dir.glob("chunk-*.npz"))) if self.chunk_dir.exists() else 0
+        n_done = len(self._chunk_files())
         what = []
         old_spec = old.get("spec") or {}
         new_spec = self.spec.as_dict()
         for key in ("base_case", "axes", "chunk_size", "variables", "summary_variable", "mode"):
             if old_spec.get(key) != new_spec.get(key):
-                what.append(key)
-        if old.get("railvib_version") != self._manifest()["railvib_version"]:
+                what.append(_changed(key, old_spec.get(key), new_spec.get(key)))
+        if old.get("railvib_version") != railvib_version():
             what.append("railvib version")
-        changed = ", ".join(what) or "data files"
+        old_files = old.get("files")
+        if isinstance(old_files, dict):
+            now = data_file_hashes(self.spec)
+            what += [
+                f"data file {p}"
+                for p in sorted(set(old_files) | set(now))
+                if old_files.get(p) != now.get(p)
+            ]
+        # an older manifest has no file hashes: say what else may differ
+        changed = ", ".join(what) or (
+            "data files"
+            if isinstance(old_files, dict)
+            else "data files, or the railvib that wrote it fingerprinted sweeps otherwise"
+        )
         return (
             f"sweep output {self.root} holds {n_done} finished chunks of a different sweep "
             f"(changed: {changed}); they no longer match this sweep file. Use another "
@@ -210,11 +394,16 @@ class ChunkStore:
             "block": list(lay.block),
             "n_cases": lay.n_cases,
             "n_chunks": lay.n_chunks,
+            "files": data_file_hashes(self.spec),
             "spec": self.spec.as_dict(),
         }
 
     def done(self) -> set[int]:
         """Chunk ids already finished (each checked against the fingerprint).
+
+        A damaged chunk file (cut short, empty, not a chunk) is removed with a
+        :class:`~railvib.errors.DamagedOutputWarning` naming it, so that it is computed
+        again.
 
         Raises
         ------
@@ -222,15 +411,20 @@ class ChunkStore:
             A chunk file belongs to another sweep.
         """
         out: set[int] = set()
-        if not self.chunk_dir.exists():
-            return out
-        for p in self.chunk_dir.iterdir():
+        for p in self._chunk_files():
             m = _CHUNK_RE.match(p.name)
-            if m is None:
-                continue
+            assert m is not None  # _chunk_files matches the names
             cid = int(m.group(1))
-            with np.load(p) as z:
-                fp = str(z["fingerprint"])
+            try:
+                fp = _read_chunk_stamp(p)
+            except _DAMAGED as exc:
+                warnings.warn(
+                    f"chunk file {p} is damaged ({_reason(exc)}); it is computed again",
+                    DamagedOutputWarning,
+                    stacklevel=2,
+                )
+                _remove(p)
+                continue
             if fp != self.fingerprint or cid >= self.layout.n_chunks:
                 raise SweepMismatchError(
                     f"chunk file {p} belongs to a different sweep; use another --output "

@@ -63,7 +63,9 @@ def test_resume_recomputes_only_missing_chunks(spec, tmp_path, monkeypatch):
     assert store.missing() == []
     kept = {p.name: p.stat().st_mtime_ns for p in store.chunk_dir.iterdir()}
     store.chunk_path(1).unlink()
-    (store.chunk_dir / ".chunk-000001.npz.abc.part").write_bytes(b"half a chunk")
+    (
+        store.chunk_dir / ".chunk-000001.npz.k2x_9qaz.part"
+    )  # mkstemp: 8 characters.write_bytes(b"half a chunk")
     computed = []
     real = runner_mod._compute
 
