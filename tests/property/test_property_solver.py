@@ -144,7 +144,7 @@ def check_solver(overrides, n_freq):
 
 
 @pytest.mark.property
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(overrides=solver_cases())
 def test_solver_is_finite_passive_reciprocal(overrides):
     check_solver(overrides, n_freq=150)

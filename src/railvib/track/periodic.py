@@ -5,10 +5,13 @@ just right of sleeper ``n+1`` (the pad at sleeper ``n+1`` belongs to the cell).
 Its transfer matrix is symplectic, so its eigenvalues come in pairs
 ``(mu, 1/mu)``; the two waves with ``|mu| < 1`` decay to the right (where
 ``|mu| ~ 1`` the choice is made by the direction of energy flow) and their
-partners decay to the left. A point load is matched by the decaying waves on
-each side of it (the "loaded cell"), and the response anywhere follows by
-propagating each wave with ``mu^k`` (never ``mu^-k``) and the exact beam field
-inside the span. See ``docs/design/0002-track-solver.md``.
+mirror images decay to the left. An undamped rail is solved in the limit of
+vanishing loss (``VANISHING_LOSS_FACTOR``), so that a finite, passive answer
+exists at its pinned-pinned frequencies too. A point load is matched by the
+decaying waves on each side of it, given at its nearest sleeper, and the
+response anywhere follows by propagating each wave with ``mu^k`` (never
+``mu^-k``) and the exact beam field over at most half a span. See
+``docs/design/0002-track-solver.md``.
 
 Positions ``x`` are measured along the rail in m, with sleepers at ``x = n d``.
 """
@@ -42,7 +45,8 @@ _SHARED = {
 }
 
 
-#: wave-matching condition number above which results are flagged with a SolverWarning
+#: wave-matching condition number (rows equilibrated) above which results are flagged with
+#: a SolverWarning: ~1e-10 from a pinned-pinned frequency, where the vanishing loss matters
 CONDITION_WARNING = 1e5
 
 #: where ``| |mu| - 1 |`` is below this, waves are sorted by energy flow, not modulus
@@ -482,7 +486,8 @@ def _warn_if_ill_conditioned(
     """Warn where left- and right-going waves (nearly) coincide: the pinned-pinned resonance.
 
     There the undamped rail's mid-span receptance really diverges, as |f - f_pp|^(-1/2); the
-    result stays finite but carries fewer correct digits.
+    result is that of the vanishing rail loss (``VANISHING_LOSS_FACTOR``): finite and passive,
+    but set by that loss (above ``CONDITION_WARNING`` by more than 1 %).
     """
     estimate = np.abs(matching).max(axis=(1, 2)) * np.abs(inverse).max(axis=(1, 2)) * 4.0
     bad = estimate > CONDITION_WARNING
@@ -490,7 +495,8 @@ def _warn_if_ill_conditioned(
         warnings.warn(
             f"{int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) lie at a pinned-pinned "
             f"resonance of the undamped rail (wave-matching condition number "
-            f"~{estimate.max():.1e}); the mid-span response there is physically unbounded. "
+            f"~{estimate.max():.1e}); the mid-span response there is physically unbounded "
+            f"and is given for a rail loss factor of {VANISHING_LOSS_FACTOR:g}. "
             "Set track.rail.loss_factor (e.g. 0.01) or move the grid point.",
             SolverWarning,
             stacklevel=3,
