@@ -25,6 +25,7 @@ __all__ = [
     "PIVOT_THRESHOLD",
     "dot",
     "entries",
+    "inverse",
     "namespace",
     "put",
     "solve",
@@ -203,6 +204,74 @@ def _solve(a: list[list[Any]], b: list[Any], xp: Any) -> tuple[list[Any], Any]:
     if bad is None:
         bad = xp.zeros(b[0].shape[:1], dtype=bool)
     return x, bad
+
+
+def inverse(a: list[list[Any]], xp: Any = np) -> tuple[list[list[Any]], Any]:
+    """``A^-1`` at every point of the stack from its LU factors on entries.
+
+    ``A = L U`` without row exchanges (the pivot test of :func:`solve`), then
+    ``A^-1 = U^-1 L^-1``, skipping the known zeros of the triangular factors: about
+    ``n^3`` elementwise operations, against ``n^3 + n^2 n`` for :func:`solve` with the
+    ``n`` columns of the identity.
+
+    Parameters
+    ----------
+    a : list of list of array
+        ``n x n`` entries, each ``(N,)``.
+    xp : module
+        Array namespace.
+
+    Returns
+    -------
+    inv : list of list of array
+        The inverse's entries.
+    bad : array of bool
+        ``(N,)``: points whose pivots failed the test (their `inv` is not to be used).
+    """
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        n = len(a)
+        u = [list(row) for row in a]
+        low: list[list[Any]] = [[None] * n for _ in range(n)]  # multipliers of L
+        bad = xp.zeros(a[0][0].shape, dtype=bool)
+        for k in range(n):
+            size = xp.abs(u[k][k])
+            for i in range(k + 1, n):
+                bad = bad | (size < PIVOT_THRESHOLD * xp.abs(u[i][k]))
+            inv_pivot = 1.0 / u[k][k]
+            for i in range(k + 1, n):
+                low[i][k] = u[i][k] * inv_pivot
+                for j in range(k + 1, n):
+                    u[i][j] = u[i][j] - low[i][k] * u[k][j]
+        # L^-1: unit lower triangular, column by column
+        linv: list[list[Any]] = [[None] * n for _ in range(n)]
+        for j in range(n):
+            for i in range(j + 1, n):
+                acc = -low[i][j]
+                for k in range(j + 1, i):
+                    acc = acc - low[i][k] * linv[k][j]
+                linv[i][j] = acc
+        # U^-1: upper triangular
+        diag = [1.0 / u[k][k] for k in range(n)]
+        uinv: list[list[Any]] = [[None] * n for _ in range(n)]
+        for j in range(n):
+            uinv[j][j] = diag[j]
+            for i in range(j - 1, -1, -1):
+                acc = u[i][i + 1] * uinv[i + 1][j]
+                for k in range(i + 2, j + 1):
+                    acc = acc + u[i][k] * uinv[k][j]
+                uinv[i][j] = -acc * diag[i]
+        out = []
+        for i in range(n):
+            row = []
+            for j in range(n):
+                # (U^-1 L^-1)_ij = sum_{k >= max(i, j)} U^-1_ik L^-1_kj, L^-1_jj = 1
+                start = max(i, j)
+                acc = uinv[i][j] if start == j else uinv[i][start] * linv[start][j]
+                for k in range(start + 1, n):
+                    acc = acc + uinv[i][k] * linv[k][j]
+                row.append(acc)
+            out.append(row)
+    return out, bad
 
 
 def _column(coef: Any, like: Any) -> Any:

@@ -45,9 +45,11 @@ def test_pinned_pinned_frequency_of_timoshenko_track():
         warnings.simplefilter("ignore", SolverWarning)  # flagged there, as it should be
         mu = track.waves(f_pp * np.array([1.0 - 1e-3, 1.0, 1.0 + 1e-3])).mu
     loss = 1.0 - np.abs(mu).max(axis=1)
-    # 1 - |mu| grows as 0.65 sqrt(|f/f_pp - 1|) around f_pp: 2e-5 already at 1e-9 off,
-    # so 1e-7 pins the model's f_pp to the closed form to better than 1e-11
-    assert loss[1] < 1e-7
+    # 1 - |mu| grows as 0.65 sqrt(|f/f_pp - 1|) around f_pp: 2e-5 already at 1e-9 off, 2e-6
+    # at 1e-11. At f_pp itself the solver's vanishing rail loss (eta = 1e-12, the limit
+    # eta -> 0+) acts as a detuning of about 1e-12: 1 - |mu| <= 0.65 sqrt(1e-12) = 6.5e-7.
+    # So 1e-6 pins the model's f_pp to the closed form to better than 1e-11
+    assert loss[1] < 1e-6
     assert loss[0] > 1e-2
     assert loss[2] > 1e-2
 

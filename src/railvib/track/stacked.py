@@ -19,7 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from railvib.stack import dot, put, solve, to_numpy
+from railvib.stack import dot, put, to_numpy
+from railvib.stack import inverse as lu_inverse
 
 __all__ = ["StackedWaves", "receptance_entries", "stacked_waves"]
 
@@ -174,17 +175,27 @@ def receptance_entries(
     x_obs = np.atleast_1d(np.asarray(x_obs, dtype=float))
     ref_load, xi = _nearest_sleeper(x_load)
     ref_obs, eta = _nearest_sleeper(x_obs)
+    xi, eta = _distinct(xi), _distinct(eta)
     pad = waves.pad
+    series: dict[float, list[Any]] = {}
+
+    def beam(u: float) -> list[Any]:
+        """``s_j(u)``, from ``s_j(|u|)``: ``s_j(-u) = (-1)^j s_j(u)`` (the same numbers)."""
+        if abs(u) not in series:
+            series[abs(u)] = krylov(waves.beta4, abs(u), xp)
+        s = series[abs(u)]
+        return list(s) if u >= 0 else [s[0], -s[1], s[2], -s[3]]
+
     amps = {}
     for u in np.unique(xi):  # wave amplitudes (a1, a2, b1, b2) of a load at coordinate u
-        s = krylov(waves.beta4, -float(u), xp)
+        s = beam(-float(u))
         rhs = [s[3], s[2], s[1], s[0]]
         if u < 0:
             rhs[3] = rhs[3] - pad * rhs[0]
         amps[float(u)] = [dot(row, rhs) for row in waves.matching_inv]
     disp = {}
     for u in np.unique(eta):  # displacement of each wave at observation coordinate u
-        row = krylov(waves.beta4, float(u), xp)
+        row = beam(float(u))
         if u < 0:
             row[0] = row[0] + pad * row[3]
         disp[float(u)] = [
@@ -211,6 +222,17 @@ def _nearest_sleeper(x: Any) -> tuple[Any, Any]:
     bay = np.floor(x)
     ref = bay + ((x - bay) > 0.5)
     return ref.astype(np.int64), x - ref
+
+
+def _distinct(x: Any, decimals: int = 12) -> Any:
+    """`x` with the values equal to `decimals` places made equal (to the first of them).
+
+    Wheel positions a whole number of bays apart give local coordinates that differ by
+    float noise (``0.5`` and ``0.4999999999999991``); they are one coordinate, one
+    evaluation of the beam field.
+    """
+    _, first, inverse = np.unique(np.round(x, decimals), return_index=True, return_inverse=True)
+    return x[first][inverse.ravel()]
 
 
 def _max_abs(values: list[Any], xp: Any) -> Any:
@@ -255,7 +277,7 @@ def _bloch_vector(half: list[list[Any]], pad: Any, mu: Any, xp: Any) -> list[Any
     for r in range(4):
         back[r][0] = back[r][0] + pad * back[r][3]
     m = [[half[r][c] - mu * back[r][c] for c in range(4)] for r in range(4)]
-    m = [[e / _norm(row, xp) for e in row] for row in m]
+    m = [[e * inv for e in row] for row, inv in ((row, 1.0 / _norm(row, xp)) for row in m)]
     first = _cross(m[1], _minors(m[2], m[3]))
     second = _cross(m[2], _minors(m[0], m[1]))
     n1, n2 = _norm(first, xp), _norm(second, xp)
@@ -301,11 +323,7 @@ def _energy_flux(v: list[Any], xp: Any) -> Any:
 def _inverse(a: list[list[Any]], xp: Any) -> list[list[Any]]:
     """``A^-1`` by elimination on entries; points with weak pivots inverted by LAPACK."""
     n = len(a)
-    one, zero = 1.0 + 0.0 * a[0][0], 0.0 * a[0][0]
-    cols, bad = solve(
-        a, [xp.stack([one if i == j else zero for j in range(n)], axis=-1) for i in range(n)], xp
-    )
-    inverse = [[cols[i][:, j] for j in range(n)] for i in range(n)]
+    inverse, bad = lu_inverse(a, xp)
     if bool(xp.any(bad)):
         mask = to_numpy(bad)
         dense = np.stack([np.stack([to_numpy(e)[mask] for e in row], -1) for row in a], -2)
