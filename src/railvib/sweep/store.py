@@ -497,27 +497,34 @@ class ChunkStore:
         self._stream = True
 
     def _open_zarr(self, example: dict[str, NDArray[Any]]) -> None:
-        """Write the store's layout, shaped and typed after one chunk's `example` arrays."""
-        import dask.array as da  # lazy placeholders of the layout (only when assembling)
+        """Write the store's layout, shaped and typed after one chunk's `example` arrays.
+
+        With Dask (the optional ``sweep`` extra) the variables are lazy placeholders and
+        only the metadata is written; without it they are zero-stride views of one zero
+        (no memory), written as compressed zero chunks that the chunks then overwrite.
+        """
         import zarr
 
+        da: Any
+        try:
+            import dask.array as da  # lazy placeholders of the layout (only when assembling)
+        except ImportError:
+            da = None
         lay = self.layout
-        arrays = {
-            name: da.zeros(lay.shape + value.shape[1:], dtype=value.dtype, chunks=-1)
-            for name, value in example.items()
-        }
+
+        def placeholder(value: NDArray[Any]) -> Any:
+            shape = lay.shape + value.shape[1:]
+            if da is None:
+                return np.broadcast_to(np.zeros((), dtype=value.dtype), shape)
+            return da.zeros(shape, dtype=value.dtype, chunks=-1)
+
+        arrays = {name: placeholder(value) for name, value in example.items()}
         template = sweep_dataset(self.spec, arrays, self.fingerprint)
         tmp = Path(tempfile.mkdtemp(prefix=".sweep.zarr.", suffix=".part", dir=self.root))
-        template.to_zarr(
-            tmp / "store",
-            mode="w",
-            zarr_format=2,
-            consolidated=True,
-            compute=False,
-            encoding=self._encoding(template),
-        )
+        options: dict[str, Any] = {"compute": da is None, "encoding": self._encoding(template)}
+        template.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True, **options)
         self._zarr_dir = tmp
-        self._zarr = zarr.open_group(tmp / "store", mode="r+", zarr_format=2)
+        self._zarr = zarr.open_group(str(tmp / "store"), mode="r+")
         self._dims = {str(name): tuple(map(str, v.dims)) for name, v in template.data_vars.items()}
 
     def _encoding(self, ds: xr.Dataset) -> dict[str, dict[str, Any]]:

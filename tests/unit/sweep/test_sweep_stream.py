@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from railvib.sweep import ChunkStore, run_sweep, sweep_from_dict
 from railvib.sweep.layout import SweepLayout
@@ -64,3 +65,14 @@ def test_a_stopped_run_keeps_its_chunks_and_leaves_no_store_in_progress(
     monkeypatch.setattr(ChunkStore, "write", real_write)
     ds = run_sweep(spec, out, workers=1, progress=False)  # the rerun finishes the sweep
     assert ds.sizes["speed_kmh"] == 4
+
+
+def test_without_dask_the_store_is_the_same(spec, tmp_path, monkeypatch):
+    """Dask is the optional ``sweep`` extra: a plain install writes the same store."""
+    import sys
+
+    with_dask = run_sweep(spec, tmp_path / "a", workers=1, progress=False).load()
+    monkeypatch.setitem(sys.modules, "dask", None)  # import dask raises ImportError
+    monkeypatch.setitem(sys.modules, "dask.array", None)
+    without = run_sweep(spec, tmp_path / "b", workers=1, progress=False).load()
+    xr.testing.assert_identical(without.drop_attrs(), with_dask.drop_attrs())
