@@ -82,7 +82,7 @@ def test_nothing_is_requested_from_the_network(page):
 def test_every_interactive_figure_renders(page):
     state, _ = page
     plots = state["plots"]
-    assert len(plots) == len(FIGURES) + 1  # Figs. 9-16 and Fig. 8
+    assert len(plots) == len(FIGURES) + 3  # Figs. 9-16 (and 13-16 predicted), Figs. 6-8
     for plot in plots:
         assert plot["width"] > 300, plot
         assert plot["height"] > 200, plot
@@ -92,7 +92,7 @@ def test_every_interactive_figure_renders(page):
 def test_every_static_figure_is_shown(page):
     state, _ = page
     images = state["images"]
-    assert len(images) == len(FIGURES) + 1
+    assert len(images) == len(FIGURES) + 3
     for alt, complete, width in images:
         assert complete, alt
         assert width > 0, alt
