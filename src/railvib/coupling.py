@@ -13,7 +13,9 @@ each frequency costs a few 4x4 operations once the vehicle is condensed.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,10 +23,15 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
+from railvib.stack import dot, entries, put, solve, stacked, to_numpy
 from railvib.track.periodic import PeriodicTrack
 from railvib.vehicle.assembly import Vehicle, WheelCondensation
 
-__all__ = ["CoupledFRF", "CoupledSystem", "coupled_response"]
+__all__ = ["FREQUENCY_BLOCK", "CoupledFRF", "CoupledSystem", "coupled_response"]
+
+#: frequencies solved at once: each entry array of a block (64 kB) and the block's working
+#: set (a few hundred of them) stay in the cache; cost is linear in the number of blocks
+FREQUENCY_BLOCK = 4096
 
 
 #: the coupled responses (one container for every solver; kept under its old name)
@@ -74,6 +81,8 @@ class CoupledSystem:
     def frf(self, f: ArrayLike) -> FRF:
         """Responses to a unit-amplitude irregularity, delayed coherently at each wheel.
 
+        Solved in blocks of :data:`FREQUENCY_BLOCK` frequencies (:meth:`frf_blocks`).
+
         Parameters
         ----------
         f : array_like
@@ -85,20 +94,57 @@ class CoupledSystem:
             With the rail receptance between the contact points.
         """
         f = np.atleast_1d(np.asarray(f, dtype=float))
-        x = self.wheel_positions
-        rec = self.track.receptance(f, x, x)
-        v = excitation_vector(f, wheel_delays(self.vehicle.wheel_offsets, self.speed))
-        u_v, force, rail = coupled_response(
-            self.vehicle.condensed_to_wheels(f), rec, self.contact_stiffness, v[..., None]
-        )
+        blocks = [frf for _, frf in self.frf_blocks(f)]
+        if len(blocks) == 1:
+            return blocks[0]
+        rec = [b.receptance for b in blocks if b.receptance is not None]
         return FRF(
             f=f,
-            vehicle=u_v[..., 0],
-            rail=rail[..., 0],
-            contact_force=force[..., 0],
+            vehicle=np.concatenate([b.vehicle for b in blocks]),
+            rail=np.concatenate([b.rail for b in blocks]),
+            contact_force=np.concatenate([b.contact_force for b in blocks]),
             dofs=self.vehicle.dofs,
-            receptance=rec,
+            receptance=np.concatenate(rec),
         )
+
+    def frf_blocks(self, f: ArrayLike, block: int | None = None) -> Iterator[tuple[slice, FRF]]:
+        """The responses of :meth:`frf` block by block, so memory is bounded by the block.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, ``(n_freq,)``.
+        block : int, optional
+            Frequencies per block (default :data:`FREQUENCY_BLOCK`).
+
+        Yields
+        ------
+        slice, FRF
+            The block's indices into `f`, and its responses (with the receptance).
+        """
+        f = np.atleast_1d(np.asarray(f, dtype=float))
+        step = FREQUENCY_BLOCK if block is None else max(1, int(block))
+        x = self.wheel_positions
+        delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
+        for start in range(0, max(f.size, 1), step):
+            sl = slice(start, min(start + step, f.size))
+            fb = f[sl]
+            rec = self.track.receptance(fb, x, x)
+            v = excitation_vector(fb, delays)
+            u_v, force, rail = coupled_response(
+                self.vehicle.condensed_to_wheels(fb), rec, self.contact_stiffness, v[..., None]
+            )
+            yield (
+                sl,
+                FRF(
+                    f=fb,
+                    vehicle=u_v[..., 0],
+                    rail=rail[..., 0],
+                    contact_force=force[..., 0],
+                    dofs=self.vehicle.dofs,
+                    receptance=rec,
+                ),
+            )
 
 
 def coupled_response(
@@ -131,8 +177,36 @@ def coupled_response(
     vehicle_displacement, contact_force, rail_displacement : numpy.ndarray
         ``(n_freq, n_dof, n_rhs)``, ``(n_freq, n_wheel, n_rhs)``, ``(n_freq, n_wheel, n_rhs)``.
     """
-    eye = np.eye(receptance.shape[-1])
-    flexibility = receptance + eye / contact_stiffness
-    u_w = np.linalg.solve(flexibility @ vehicle.stiffness + eye, excitation)
-    force = -(vehicle.stiffness @ u_w)
-    return vehicle.recovery @ u_w, force, receptance @ force
+    return _coupled(vehicle, receptance, contact_stiffness, excitation, np)
+
+
+def _coupled(
+    vehicle: WheelCondensation, receptance: Any, contact_stiffness: float, excitation: Any, xp: Any
+) -> tuple[Any, Any, Any]:
+    """:func:`coupled_response` in the stacked layout, in array namespace `xp`."""
+    rec = entries(receptance, xp)
+    s = vehicle.stiffness_entries
+    n = len(rec)
+    flex = [
+        [rec[a][b] + (1.0 / contact_stiffness if a == b else 0.0) for b in range(n)]
+        for a in range(n)
+    ]
+    system = [
+        [dot(flex[a], [s[c][b] for c in range(n)]) + (1.0 if a == b else 0.0) for b in range(n)]
+        for a in range(n)
+    ]
+    rhs = [excitation[:, a, :] for a in range(n)]
+    u_w, bad = solve(system, rhs, xp)
+    if bool(xp.any(bad)):  # pivots too small for elimination without exchanges: LAPACK
+        a_bad = to_numpy(stacked(system, xp))[to_numpy(bad)]
+        fixed = np.linalg.solve(a_bad, to_numpy(excitation)[to_numpy(bad)])
+        u_w = [put(u_w[a], bad, fixed[:, a, :], xp) for a in range(n)]
+    force = [-_apply(s[a], u_w) for a in range(n)]
+    vehicle_u = [_apply(row, u_w) for row in vehicle.recovery_entries]
+    rail = [_apply(rec[a], force) for a in range(n)]
+    return stacked(vehicle_u, xp), stacked(force, xp), stacked(rail, xp)
+
+
+def _apply(row: list[Any], x: list[Any]) -> Any:
+    """``sum_b row[b] x[b]`` for entries ``(N,)`` and right-hand sides ``(N, k)``."""
+    return dot([r[:, None] for r in row], x)

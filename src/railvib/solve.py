@@ -27,7 +27,7 @@ from railvib.outputs import (
     linearity_note,
 )
 from railvib.plot import OVERVIEW_STEMS
-from railvib.results.dataset import build_dataset, check_finite, save_csv, save_netcdf
+from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
 from railvib.spectra.base import SpatialSpectrum
@@ -78,7 +78,8 @@ def run_system(
     Returns
     -------
     xarray.Dataset
-        See :func:`railvib.results.build_dataset`; with the contact check
+        See :func:`railvib.results.build_dataset` (built block by block of
+        :data:`railvib.coupling.FREQUENCY_BLOCK` frequencies); with the contact check
         (``contact_force_rms``, ``loss_of_contact_probability``, ``linear_model_valid``).
 
     Raises
@@ -89,7 +90,6 @@ def run_system(
     """
     f = grid.f
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
-        frf = system.frf(f)
         s_r = spectrum.temporal(f, system.speed)
         pad_k = system.track.pad.stiffness(f, system.track.pad_temperature)
     extra = {
@@ -116,7 +116,7 @@ def run_system(
     }
     settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        ds = build_dataset(frf, s_r, attrs=meta, extra=extra)
+        ds = build_dataset_blocks(f, system.frf_blocks(f), s_r, attrs=meta, extra=extra)
     check_finite(ds)  # before the derived outputs, which assume finite PSDs
     return derive(ds, DEFAULT_OUTPUTS, settings)
 

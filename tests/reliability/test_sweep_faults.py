@@ -186,7 +186,7 @@ def test_damaged_manifest_with_another_sweeps_chunks_says_damaged_not_changed(fi
 def test_leftover_temporaries_of_a_killed_run_are_removed_and_nothing_else(finished, tmp_path):
     spec, done, reference = finished
     out = _copy(done, tmp_path / "out")
-    zarr_part = out / ".sweep.zarr.k3j_x9q2.part"  # what ChunkStore.write_zarr leaves
+    zarr_part = out / ".sweep.zarr.k3j_x9q2.part"  # what a killed run leaves
     (zarr_part / "store" / "peak").mkdir(parents=True)
     (zarr_part / "store" / "peak" / "0.0").write_bytes(bytes(100_000))
     ours = [

@@ -32,6 +32,7 @@ LAYERS = {
     "response": 1,
     "grid": 1,
     "pem": 1,
+    "stack": 1,
     "contact": 1,
     "pads": 2,
     "spectra": 2,
@@ -63,6 +64,10 @@ LAZY_LIBRARIES = {
     "scipy.linalg": "the Timoshenko span's matrix exponential only (railvib.track.beam)",
     "scipy.sparse.linalg": "the finite-track reference model only (railvib.validation)",
     "distributed": "a sweep on a Dask cluster only (railvib.sweep.runner)",
+    "dask.array": "lazy placeholders of a sweep's Zarr layout, only when assembling one",
+    "zarr": "a sweep's Zarr store, written chunk by chunk, only when assembling one",
+    "cupy": "stacked kernels on a GPU, only when backend='cupy' is asked for (railvib.stack)",
+    "jax": "stacked kernels on JAX, only when backend='jax' is asked for (railvib.stack)",
     "plotly": "the plotly.js text inlined in the reproduce report only (railvib.reproduce.report)",
 }
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -20,6 +21,7 @@ from railvib.results.variables import VARIABLES, compute_variables
 __all__ = [
     "atomic_path",
     "build_dataset",
+    "build_dataset_blocks",
     "check_finite",
     "column_units",
     "load_netcdf",
@@ -65,9 +67,52 @@ def build_dataset(
         (``psd_acceleration_unit``, ``psd_displacement_unit``, ``frf_displacement_unit``;
         :mod:`railvib.results.units`).
     """
+    return build_dataset_blocks(frf.f, [(slice(None), frf)], irregularity_psd, attrs, extra)
+
+
+def build_dataset_blocks(
+    f: NDArray[np.float64],
+    blocks: Iterable[tuple[slice, FRF]],
+    irregularity_psd: NDArray[np.float64],
+    attrs: dict[str, Any] | None = None,
+    extra: dict[str, xr.DataArray] | None = None,
+) -> xr.Dataset:
+    """:func:`build_dataset` from the responses of one case given block by block.
+
+    Each block's variables are written into the dataset's arrays as it comes, so
+    no response of the whole grid is held besides the result
+    (:meth:`railvib.coupling.CoupledSystem.frf_blocks`).
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        All frequencies, Hz, ``(n_freq,)``.
+    blocks : iterable of (slice, FRF)
+        Indices into `f` and the responses there, covering `f` (no batch axes).
+    irregularity_psd : numpy.ndarray
+        One-sided temporal irregularity PSD applied, m^2/Hz, ``(n_freq,)``.
+    attrs : dict, optional
+        Global attributes (case TOML, version, ...).
+    extra : dict of xarray.DataArray, optional
+        Further variables to include.
+
+    Returns
+    -------
+    xarray.Dataset
+        As :func:`build_dataset`.
+    """
+    s_r = np.asarray(irregularity_psd, dtype=float)
+    values: dict[str, NDArray[np.generic]] = {}
+    frf: FRF | None = None
+    for sl, frf in blocks:
+        for name, value in compute_variables(frf, s_r[sl], VARIABLES).items():
+            if name not in values:
+                values[name] = np.empty((f.size, *value.shape[1:]), dtype=value.dtype)
+            values[name][sl] = value
+    assert frf is not None, "at least one block"
     labels = list(frf.labels)
     coords = {
-        "frequency": ("frequency", frf.f, {"units": "Hz", "long_name": "frequency"}),
+        "frequency": ("frequency", f, {"units": "Hz", "long_name": "frequency"}),
         "response": ("response", labels, {"long_name": "response"}),
         "displacement_unit": (
             "response",
@@ -76,7 +121,6 @@ def build_dataset(
         ),
         "wheel": ("wheel", np.arange(1, frf.n_wheel + 1), {"long_name": "wheel"}),
     }
-    values = compute_variables(frf, irregularity_psd, VARIABLES)
     data = {name: (var.dims, values[name], var.attrs) for name, var in VARIABLES.items()}
     ds = xr.Dataset(data, coords=coords, attrs={"psd_convention": PSD_CONVENTION, **(attrs or {})})
     ds = with_unit_coordinates(ds, {name: name for name in VARIABLES if name in QUANTITY_UNITS})

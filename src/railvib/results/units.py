@@ -20,6 +20,7 @@ the displacement's).
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from typing import Any
 
 import xarray as xr
 
@@ -141,8 +142,9 @@ def with_unit_coordinates(ds: xr.Dataset, quantities: Mapping[str, str]) -> xr.D
         A new dataset: coordinates ``<quantity>_unit`` over ``response`` and, on each
         such variable, the attribute ``units_coordinate`` naming its coordinate.
     """
-    out = ds.copy()
+    out = ds.copy()  # new variables (and attribute dicts) over the same data
     labels = [str(r) for r in ds["response"].values] if "response" in ds.dims else []
+    coords: dict[str, Any] = {}
     for name, quantity in quantities.items():
         if name not in out.data_vars or "response" not in out[name].dims:
             continue
@@ -150,8 +152,9 @@ def with_unit_coordinates(ds: xr.Dataset, quantities: Mapping[str, str]) -> xr.D
         if len(set(units)) < 2:
             continue
         coord = unit_coordinate_name(quantity)
-        if coord not in out.coords:
+        if coord not in out.coords and coord not in coords:
             attrs = {"long_name": f"unit of the {quantity.replace('_', ' ')} of each response"}
-            out = out.assign_coords({coord: ("response", units, attrs)})
-        out[name] = out[name].assign_attrs(units_coordinate=coord)
-    return out
+            coords[coord] = ("response", units, attrs)
+        # in place on the copy: assigning a variable would align the whole dataset again
+        out.variables[name].attrs["units_coordinate"] = coord
+    return out.assign_coords(coords) if coords else out

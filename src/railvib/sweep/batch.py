@@ -10,7 +10,9 @@ contact differ but whose track and wheel positions agree still share ``R``.
 
 from __future__ import annotations
 
+import copy
 import json
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -20,14 +22,18 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.case import Case, build_grid, build_spectrum, build_system, case_from_dict
 from railvib.case.load import merge_case_dicts
 from railvib.coupling import CoupledSystem, coupled_response
+from railvib.grid import trapezoid
 from railvib.labels import response_labels
 from railvib.outputs import ContactCheck
+from railvib.pads import PADS, PadModel
+from railvib.pads.scaled import ScaledPad
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
-from railvib.results.stats import summary, summary_names
+from railvib.results.stats import summary_names
 from railvib.results.variables import compute_variables
-from railvib.sweep.layout import SweepLayout, is_cheap_field
-from railvib.sweep.spec import SweepSpec, nested_override
+from railvib.sweep.layout import SweepLayout, is_cheap_field, is_pad_field
+from railvib.sweep.spec import SweepSpec
+from railvib.sweep.stacked import frf_pad_stack
 from railvib.units import kmh_to_ms
 from railvib.vehicle.assembly import WheelCondensation
 
@@ -162,22 +168,36 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     f = build_grid(case_from_dict(base, warn=False)).f
     cases, groups = _chunk_cases(spec, layout, chunk_id)
     frf, s_r, loads = _solve_groups(f, cases, groups)
-    out: dict[str, NDArray[Any]] = dict(compute_variables(frf, s_r, spec.variables))
-    psd_force = np.asarray(compute_variables(frf, s_r, ["psd_force"])["psd_force"], dtype=float)
+    needed = dict.fromkeys([*spec.variables, "psd_force", spec.summary_variable])
+    values = compute_variables(frf, s_r, needed)  # each variable computed once
+    out: dict[str, NDArray[Any]] = {name: values[name] for name in spec.variables}
+    psd_force = np.asarray(values["psd_force"], dtype=float)
     check = contact_check(f, psd_force, loads, spec.loss_of_contact_threshold)
     for name in CONTACT_SUMMARY:
         out[f"summary/{name}"] = check[name].values
-    target = compute_variables(frf, s_r, [spec.summary_variable])[spec.summary_variable]
-    da = xr.DataArray(
-        target,
-        dims=("case", "frequency", "response"),
-        coords={"frequency": f, "response": list(frf.labels)},
-        attrs={"units": ""},
-    )
-    bands = list(spec.rms_bands)
-    stats = summary(xr.Dataset({"psd": da}), bands=bands, variable="psd")
-    for name in summary_names(bands):
-        out[f"summary/{name}"] = stats[name].transpose("case", "response").values
+    target = np.asarray(values[spec.summary_variable], dtype=float)
+    out.update(_summary(f, target, spec.rms_bands))
+    return out
+
+
+def _summary(
+    f: NDArray[np.float64], psd: NDArray[np.float64], bands: Sequence[Sequence[float]]
+) -> dict[str, NDArray[np.float64]]:
+    """:func:`railvib.results.stats.summary` of PSDs ``(n_case, n_freq, n_resp)`` in NumPy.
+
+    The same operations on the same values (maximum, first frequency of the maximum,
+    trapezoidal rule over the grid points in each band), without labelled arrays.
+    """
+    out = {
+        "summary/peak": psd.max(axis=1),
+        "summary/dominant_frequency": f[psd.argmax(axis=1)],
+        "summary/rms": np.sqrt(trapezoid(psd, f, axis=1)),
+    }
+    for (lo, hi), name in zip(bands, summary_names(bands)[3:], strict=True):
+        inside = (f >= lo) & (f <= hi)
+        if not inside.any():
+            raise ValueError(f"band {(lo, hi)} Hz holds no grid frequency")
+        out[f"summary/{name}"] = np.sqrt(trapezoid(psd[:, inside], f[inside], axis=1))
     return out
 
 
@@ -221,8 +241,8 @@ def contact_check(
 def _chunk_cases(
     spec: SweepSpec, layout: SweepLayout, chunk_id: int
 ) -> tuple[list[dict[str, Any]], list[list[int]]]:
-    """The case dicts of a chunk, and the groups of cases that share the coupled system."""
-    cheap = [is_cheap_field(field) for field in spec.fields]
+    """The case dicts of a chunk, and the groups of cases that share all but pad and speed."""
+    cheap = [is_cheap_field(field) or is_pad_field(field) for field in spec.fields]
     base = spec.base_case_dict()
     cases: list[dict[str, Any]] = []
     groups: dict[str, list[int]] = {}
@@ -230,12 +250,29 @@ def _chunk_cases(
         full = base
         struct_override: dict[str, Any] = {}
         for (field, value), is_cheap in zip(layout.overrides(index), cheap, strict=True):
-            full = merge_case_dicts(full, nested_override(field, value))
+            full = _with_field(full, field.split("."), value)
             if not is_cheap:
                 struct_override[field] = value
         cases.append(full)
         groups.setdefault(_key(struct_override), []).append(i)
     return cases, list(groups.values())
+
+
+def _with_field(d: Mapping[str, Any], parts: list[str], value: Any) -> dict[str, Any]:
+    """``merge_case_dicts(d, nested_override(field, value))``, copying only the path to it.
+
+    The tables off the path are shared with `d` (cases of a chunk are read, never
+    modified: :func:`railvib.case.case_from_dict` copies its input).
+    """
+    out = dict(d)
+    key, old = parts[0], d.get(parts[0])
+    if len(parts) > 1:
+        out[key] = _with_field(old if isinstance(old, Mapping) else {}, parts[1:], value)
+    elif isinstance(value, Mapping):  # a table merges (or, naming a member, replaces)
+        out[key] = merge_case_dicts({key: old}, {key: value})[key]
+    else:
+        out[key] = copy.deepcopy(value)
+    return out
 
 
 def _solve_groups(
@@ -246,53 +283,67 @@ def _solve_groups(
     The irregularity PSD applied is in m^2/Hz, ``(n_case, n_freq)``; the static wheel
     loads in N, ``(n_case, n_wheel)``.
 
-    Each group shares one coupled system and is solved in one batched call over its
-    speeds; groups share the rail receptance and the vehicle condensation where
-    their track and vehicle agree.
+    A group's cases share everything but the pad, its temperature, the speed and the
+    irregularity: its first case is validated and built, the others' pads are built from
+    their (validated) pad tables, and the group is solved as one stack
+    (:func:`railvib.sweep.stacked.frf_pad_stack`). Groups share the vehicle condensation
+    where their vehicles agree.
     """
     n_case = len(cases)
-    per_case: list[FRF | None] = [None] * n_case
     s_r = np.empty((n_case, f.size))
-    loads: list[NDArray[np.float64] | None] = [None] * n_case
-    receptances: dict[str, NDArray[np.complex128]] = {}
+    loads: NDArray[np.float64] | None = None
+    out: dict[str, NDArray[np.complex128]] = {}
+    dofs: tuple[str, ...] = ()
     condensations: dict[str, WheelCondensation] = {}
+    pads: dict[str, PadModel] = {}
     spectra: dict[str, Any] = {}
     for members in groups:
         case = case_from_dict(cases[members[0]], warn=False)
         system = build_system(case)
-        tkey = _track_key(cases[members[0]])
-        if tkey not in receptances:
-            x = system.wheel_positions
-            receptances[tkey] = system.track.receptance(f, x, x)
         vkey = _key(cases[members[0]]["vehicle"])
         if vkey not in condensations:
             condensations[vkey] = system.vehicle.condensed_to_wheels(f)
-        speeds = sorted({cases[i]["speed_kmh"] for i in members})
-        batch = frf_many_speeds(
+        member_pads = []
+        for i in members:
+            table = cases[i]["track"]["pad"]
+            pkey = _key(table)
+            if pkey not in pads:
+                pads[pkey] = _pad_like(system.track.pad, table)
+            member_pads.append(pads[pkey])
+        batch = frf_pad_stack(
             system,
             f,
-            [kmh_to_ms(s) for s in speeds],
-            receptance=receptances[tkey],
+            member_pads,
+            [cases[i]["track"].get("pad_temperature_c") for i in members],
+            [kmh_to_ms(cases[i]["speed_kmh"]) for i in members],
             condensation=condensations[vkey],
         )
         static = np.asarray(system.vehicle.static_wheel_loads(), dtype=float)
+        if loads is None:
+            loads = np.empty((n_case, static.size))
+            dofs = batch.dofs
+        for name in ("vehicle", "rail", "contact_force"):
+            value = getattr(batch, name)
+            if name not in out:
+                out[name] = np.empty((n_case, *value.shape[1:]), dtype=np.complex128)
+            out[name][members] = value
+        loads[members] = static
         for i in members:
-            per_case[i] = batch.at(speeds.index(cases[i]["speed_kmh"]))
-            loads[i] = static
             ikey = _key(cases[i]["irregularity"])
             if ikey not in spectra:
                 spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
             s_r[i] = spectra[ikey].temporal(f, kmh_to_ms(cases[i]["speed_kmh"]))
-    solved = [frf for frf in per_case if frf is not None]
-    assert len(solved) == n_case, "every case belongs to one group"
-    frf = FRF(
-        f,
-        np.stack([h.vehicle for h in solved]),
-        np.stack([h.rail for h in solved]),
-        np.stack([h.contact_force for h in solved]),
-        solved[0].dofs,
-    )
-    return frf, s_r, np.stack([p for p in loads if p is not None])
+    assert loads is not None, "every case belongs to one group"
+    frf = FRF(f, out["vehicle"], out["rail"], out["contact_force"], dofs)
+    return frf, s_r, loads
+
+
+def _pad_like(template: PadModel, table: dict[str, Any]) -> PadModel:
+    """The pad of `table` as the track of the case uses it (doubled for a rail pair)."""
+    pad = PADS.from_dict(table, "track.pad")
+    if isinstance(template, ScaledPad):
+        return ScaledPad(pad, template.factor)
+    return pad
 
 
 def _with_irregularity(case: Case, full: dict[str, Any]) -> Case:

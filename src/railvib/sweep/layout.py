@@ -18,10 +18,29 @@ from numpy.typing import NDArray
 
 from railvib.sweep.spec import SweepSpec
 
-__all__ = ["CHEAP_FIELDS", "SweepLayout", "is_cheap_field"]
+__all__ = ["CHEAP_FIELDS", "SweepLayout", "is_cheap_field", "is_pad_field"]
 
 #: fields that change only the excitation, not the coupled system
 CHEAP_FIELDS = ("speed_kmh", "irregularity")
+
+
+def is_pad_field(field: str) -> bool:
+    """Tell whether `field` changes the railpad only (its table, a parameter, its temperature).
+
+    Cases differing in such fields share rail, sleepers, vehicle and contact, and are
+    solved as one stack (:func:`railvib.sweep.stacked.frf_pad_stack`).
+
+    Parameters
+    ----------
+    field : str
+        Dotted case field, e.g. ``"track.pad.k0_n_per_m"``.
+
+    Returns
+    -------
+    bool
+        True for ``track.pad``, ``track.pad.*`` and ``track.pad_temperature_c``.
+    """
+    return field in ("track.pad", "track.pad_temperature_c") or field.startswith("track.pad.")
 
 
 def is_cheap_field(field: str) -> bool:

@@ -282,7 +282,10 @@ def run_sweep(
         lay = store.layout
         sizes = {cid: _n(lay.chunk_shape(cid)) for cid in todo}
         done_before = lay.n_cases - sum(sizes.values())
+        # with `assemble`, each chunk goes into sweep.zarr as it arrives (overlapped with
+        # compute); the store in progress is removed if the run stops
         with (
+            store.streaming(assemble),
             _progress(progress, lay.n_cases, done_before) as advance,
             # closed at once on any exception (Ctrl-C while a chunk is written): the pool
             # stops now, not when the traceback is collected at exit, half-started workers
@@ -294,9 +297,7 @@ def run_sweep(
                 advance(sizes[cid])
     if not assemble:
         return None
-    ds = store.assemble()
-    store.write_zarr(ds)
-    return ds
+    return store.finish_zarr()
 
 
 def _results(

@@ -1,10 +1,11 @@
-"""The resumable chunk store of a sweep, and the labelled dataset assembled from it.
+"""The resumable chunk store of a sweep, and its Zarr store, written chunk by chunk.
 
 Layout of a sweep folder::
 
     OUT/manifest.json          fingerprint, layout and the resolved sweep
     OUT/chunks/chunk-000012.npz one file per finished chunk, written atomically
-    OUT/sweep.zarr             the assembled dataset (written when all chunks exist)
+    OUT/sweep.zarr             the assembled dataset (each chunk written into a temporary
+                               store as it arrives; moved into place when all exist)
     OUT/sweep.nc, OUT/summary.csv, OUT/plots/   optional exports
 
 Each chunk is written to a temporary file and moved into place with
@@ -24,6 +25,8 @@ import shutil
 import tempfile
 import warnings
 import zipfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -72,7 +75,7 @@ class SweepMismatchError(RailvibError):
 _DAMAGED = (OSError, EOFError, ValueError, KeyError, zipfile.BadZipFile)
 
 #: the sweep's own temporaries (``.<name>.<random>.part`` of :func:`railvib.io.atomic_path`
-#: and :meth:`ChunkStore.write_zarr`), by sub-folder: the prefixes of their names, or
+#: and :meth:`ChunkStore.begin_zarr`), by sub-folder: the prefixes of their names, or
 #: ``("",)`` for a folder that holds nothing but railvib's files
 _LEFTOVERS: dict[str, tuple[str, ...]] = {
     ".": ("manifest.json", "sweep.zarr", "sweep.nc", "summary.csv"),
@@ -262,6 +265,11 @@ class ChunkStore:
         self.spec = spec
         self.layout = SweepLayout(spec)
         self.fingerprint = fingerprint(spec)
+        self._stream = False  # write() streams into the Zarr store (begin_zarr)
+        self._zarr: Any = None  # the Zarr group being filled, or None
+        self._zarr_dir: Path | None = None
+        self._dims: dict[str, tuple[str, ...]] = {}
+        self._streamed: set[int] = set()
 
     @property
     def chunk_dir(self) -> Path:
@@ -455,6 +463,8 @@ class ChunkStore:
         with atomic_path(path) as tmp:
             with open(tmp, "wb") as fh:
                 np.savez(fh, fingerprint=np.array(self.fingerprint), **payload)  # type: ignore[arg-type]
+        if self._stream:
+            self._write_region(chunk_id, arrays)
         return path
 
     def read(self, chunk_id: int) -> dict[str, NDArray[Any]]:
@@ -473,55 +483,123 @@ class ChunkStore:
         with np.load(self.chunk_path(chunk_id)) as z:
             return {k.replace("__", "/"): z[k] for k in z.files if k != "fingerprint"}
 
-    # -- assembly ----------------------------------------------------------------------------
-    def assemble(self) -> xr.Dataset:
-        """Assemble the labelled dataset of the whole sweep from the finished chunks.
+    # -- streaming into the Zarr store ------------------------------------------------------
+    def begin_zarr(self) -> None:
+        """Stream the chunks into ``sweep.zarr`` from now on: each :meth:`write` adds its own.
+
+        At the first chunk the store's metadata and coordinates are written to a
+        temporary folder (the variables as lazy placeholders: nothing of the size of the
+        sweep is held); then each chunk is compressed and written as it arrives, while
+        the workers compute the next, and the parent holds one chunk at a time.
+        :meth:`finish_zarr` adds the chunks finished by an earlier run and moves the
+        store into place.
+        """
+        self._stream = True
+
+    def _open_zarr(self, example: dict[str, NDArray[Any]]) -> None:
+        """Write the store's layout, shaped and typed after one chunk's `example` arrays.
+
+        With Dask (the optional ``sweep`` extra) the variables are lazy placeholders and
+        only the metadata is written; without it they are zero-stride views of one zero
+        (no memory), written as compressed zero chunks that the chunks then overwrite.
+        """
+        import zarr
+
+        da: Any
+        try:
+            import dask.array as da  # lazy placeholders of the layout (only when assembling)
+        except ImportError:
+            da = None
+        lay = self.layout
+
+        def placeholder(value: NDArray[Any]) -> Any:
+            shape = lay.shape + value.shape[1:]
+            if da is None:
+                return np.broadcast_to(np.zeros((), dtype=value.dtype), shape)
+            return da.zeros(shape, dtype=value.dtype, chunks=-1)
+
+        arrays = {name: placeholder(value) for name, value in example.items()}
+        template = sweep_dataset(self.spec, arrays, self.fingerprint)
+        tmp = Path(tempfile.mkdtemp(prefix=".sweep.zarr.", suffix=".part", dir=self.root))
+        options: dict[str, Any] = {"compute": da is None, "encoding": self._encoding(template)}
+        template.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True, **options)
+        self._zarr_dir = tmp
+        self._zarr = zarr.open_group(str(tmp / "store"), mode="r+")
+        self._dims = {str(name): tuple(map(str, v.dims)) for name, v in template.data_vars.items()}
+
+    def _encoding(self, ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+        block = dict(zip(self.layout.dims, self.layout.block, strict=True))
+        return {
+            str(name): {"chunks": tuple(block.get(str(d), v.sizes[d]) for d in v.dims)}
+            for name, v in ds.data_vars.items()
+        }
+
+    def _write_region(self, chunk_id: int, arrays: dict[str, NDArray[Any]]) -> None:
+        """Write one chunk's arrays into their block of every Zarr variable."""
+        if self._zarr is None:
+            self._open_zarr(arrays)
+        lay = self.layout
+        sl = dict(zip(lay.dims, lay.chunk_slices(chunk_id), strict=True))
+        shape = lay.chunk_shape(chunk_id)
+        n = len(lay.dims)
+        for key, value in arrays.items():
+            name = key.removeprefix("summary/")
+            dims = self._dims[name]
+            block = value.reshape(shape + value.shape[1:])  # sweep dims first
+            own = dims[: len(dims) - n]  # the variable's own dims, then the sweep's
+            order = [n + i for i in range(len(own))] + list(range(n))
+            self._zarr[name][tuple(sl.get(d, slice(None)) for d in dims)] = np.transpose(
+                block, order
+            )
+        self._streamed.add(chunk_id)
+
+    @contextmanager
+    def streaming(self, enabled: bool = True) -> Iterator[None]:
+        """Stream the chunks written in the block into the Zarr store (:meth:`begin_zarr`).
+
+        If the block is left by an exception (Ctrl-C, a worker dying), the store in
+        progress is removed; the chunk files stay for a rerun.
+
+        Parameters
+        ----------
+        enabled : bool
+            False: write the chunk files only.
+        """
+        if enabled:
+            self.begin_zarr()
+        try:
+            yield
+        except BaseException:
+            self.discard_zarr()
+            raise
+
+    def discard_zarr(self) -> None:
+        """Remove the store in progress (the run stopped; the chunk files are kept)."""
+        if self._zarr_dir is not None:
+            shutil.rmtree(self._zarr_dir, ignore_errors=True)
+        self._zarr = self._zarr_dir = None
+        self._stream = False
+        self._streamed = set()
+
+    def finish_zarr(self) -> xr.Dataset:
+        """Add the chunks written before :meth:`begin_zarr`, then move the store into place.
 
         Returns
         -------
         xarray.Dataset
-            Dimensions ``frequency``, ``response`` (``wheel`` for forces) and the
-            sweep dimensions; summary variables over ``response`` and the sweep
-            dimensions.
+            The sweep dataset opened from ``OUT/sweep.zarr`` (read lazily: values are
+            loaded on access, so the sweep need not fit in memory).
         """
-        lay = self.layout
-        arrays: dict[str, NDArray[Any]] = {}
-        for cid in range(lay.n_chunks):
-            chunk = self.read(cid)
-            sl = lay.chunk_slices(cid)
-            shape = lay.chunk_shape(cid)
-            for name, value in chunk.items():
-                if name not in arrays:
-                    arrays[name] = np.empty(lay.shape + value.shape[1:], dtype=value.dtype)
-                arrays[name][sl] = value.reshape(shape + value.shape[1:])
-        return sweep_dataset(self.spec, arrays, self.fingerprint)
-
-    def write_zarr(self, ds: xr.Dataset) -> Path:
-        """Write `ds` to ``OUT/sweep.zarr`` atomically (temporary folder, then rename).
-
-        The store is chunked by case: one Zarr chunk per sweep chunk.
-
-        Parameters
-        ----------
-        ds : xarray.Dataset
-            The assembled sweep dataset (:meth:`assemble`).
-
-        Returns
-        -------
-        pathlib.Path
-            The Zarr store, ``OUT/sweep.zarr``.
-        """
+        assert self._stream, "begin_zarr first"
+        for cid in range(self.layout.n_chunks):
+            if cid not in self._streamed:
+                self._write_region(cid, self.read(cid))
+        assert self._zarr_dir is not None, "a sweep has at least one chunk"
         target = self.root / ZARR_NAME
-        tmp = Path(tempfile.mkdtemp(prefix=".sweep.zarr.", suffix=".part", dir=self.root))
         try:
-            encoding = {}
-            block = dict(zip(self.layout.dims, self.layout.block, strict=True))
-            for name, da in ds.data_vars.items():
-                encoding[name] = {"chunks": tuple(block.get(str(d), da.sizes[d]) for d in da.dims)}
-            ds.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True, encoding=encoding)
             if target.exists():
                 shutil.rmtree(target)
-            os.replace(tmp / "store", target)
+            os.replace(self._zarr_dir / "store", target)
         finally:
-            shutil.rmtree(tmp, ignore_errors=True)
-        return target
+            self.discard_zarr()
+        return xr.open_zarr(target, consolidated=True, chunks=None)

@@ -28,6 +28,7 @@ from railvib.docstrings import fill_doc
 from railvib.errors import CaseError, SolverWarning
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_parameters, check_value, parameter
+from railvib.stack import stacked
 from railvib.track.base import TRACKS, TrackModel
 from railvib.track.beam import (
     dynamic_stiffness,
@@ -35,6 +36,7 @@ from railvib.track.beam import (
     krylov_series,
     timoshenko_transfer,
 )
+from railvib.track.stacked import receptance_entries, stacked_waves
 
 __all__ = ["MAX_BAY_WAVENUMBER", "PeriodicTrack", "Rail", "TrackWaves"]
 
@@ -347,7 +349,8 @@ class PeriodicTrack(TrackModel):
         rows = 1.0 / np.abs(matching).max(axis=2)
         matching = matching * rows[:, :, None]
         matching_inv = np.linalg.inv(matching)
-        _warn_if_ill_conditioned(f, matching, matching_inv)
+        condition = np.abs(matching).max(axis=(1, 2)) * np.abs(matching_inv).max(axis=(1, 2)) * 4.0
+        _warn_if_ill_conditioned(f, condition)
         matching_inv *= rows[:, None, :]
         return TrackWaves(
             f=f,
@@ -383,13 +386,21 @@ class PeriodicTrack(TrackModel):
             Complex receptance in m/N, shape ``(n_freq, n_obs, n_load)``;
             ``[k, i, j]`` is the displacement at ``x_obs[i]`` per unit force at ``x_load[j]``.
         """
-        w = self.waves(f) if waves is None else waves
         d = self.sleeper_spacing
         x_load = np.atleast_1d(np.asarray(x_load, dtype=float)) / d
         x_obs = np.atleast_1d(np.asarray(x_obs, dtype=float)) / d
         for name, x in (("x_load", x_load), ("x_obs", x_obs)):
             if not np.all(np.isfinite(x)):
                 raise CaseError(name, list(x * d), "finite positions (m)")
+        if waves is None and not self.rail.is_timoshenko:
+            # the same waves in the stacked layout (railvib.track.stacked): a few elementwise
+            # passes per step instead of (n_freq, 2, 4, 4) temporaries and a 4x4 inverse
+            f = _as_freq(f)
+            stack = stacked_waves(self._beta4(f), self._pad_hat(f))
+            _warn_if_ill_conditioned(f, stack.condition)
+            rec = stacked(receptance_entries(stack, x_load, x_obs))
+            return np.asarray(rec * (self.sleeper_spacing**3 / self._ei), dtype=np.complex128)
+        w = self.waves(f) if waves is None else waves
         # every point is referred to its nearest sleeper (local coordinate in [-1/2, 1/2]):
         # the beam field is never carried over more than half a bay, where the growing
         # evanescent component would swamp the decaying one
@@ -531,16 +542,14 @@ class PeriodicTrack(TrackModel):
         return c, np.asarray(np.linalg.inv(c), dtype=np.complex128)
 
 
-def _warn_if_ill_conditioned(
-    f: NDArray[np.float64], matching: NDArray[np.complex128], inverse: NDArray[np.complex128]
-) -> None:
+def _warn_if_ill_conditioned(f: NDArray[np.float64], estimate: NDArray[np.float64]) -> None:
     """Warn where left- and right-going waves (nearly) coincide: the pinned-pinned resonance.
 
     There the undamped rail's mid-span receptance really diverges, as |f - f_pp|^(-1/2); the
     result is that of the vanishing rail loss (``VANISHING_LOSS_FACTOR``): finite and passive,
-    but set by that loss (above ``CONDITION_WARNING`` by more than 1 %).
+    but set by that loss (above ``CONDITION_WARNING`` by more than 1 %). `estimate` is
+    ``4 max|M| max|M^-1|`` of the row-equilibrated wave matching ``M`` at each frequency.
     """
-    estimate = np.abs(matching).max(axis=(1, 2)) * np.abs(inverse).max(axis=(1, 2)) * 4.0
     bad = estimate > CONDITION_WARNING
     if np.any(bad):
         warnings.warn(

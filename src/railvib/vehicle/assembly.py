@@ -4,11 +4,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
+from railvib.stack import PIVOT_THRESHOLD, dot, put, stacked, to_numpy
 from railvib.vehicle.parts import Attachment, RigidBody, Suspension, Wheel
 
 __all__ = ["Vehicle", "WheelCondensation"]
@@ -18,19 +20,30 @@ GRAVITY = 9.81  # m/s^2
 
 @dataclass(frozen=True, eq=False)
 class WheelCondensation:
-    """A vehicle's dynamic stiffness condensed onto its wheel DOFs.
+    """A vehicle's dynamic stiffness condensed onto its wheel DOFs, in the stacked layout.
 
     Attributes
     ----------
-    stiffness : numpy.ndarray
-        ``(n_freq, n_wheel, n_wheel)``, N/m: wheel forces per wheel displacement with
-        the bodies free.
-    recovery : numpy.ndarray
-        ``(n_freq, n_dof, n_wheel)``: all DOF displacements per wheel displacement.
+    stiffness_entries : list of list of array
+        ``S[a][b]``, each ``(n_freq,)``, N/m: wheel forces per wheel displacement with
+        the bodies free (``n_wheel x n_wheel`` entries, symmetric).
+    recovery_entries : list of list of array
+        ``R[i][b]``, each ``(n_freq,)``: DOF ``i``'s displacement per displacement of
+        wheel ``b`` (``n_dof x n_wheel`` entries).
     """
 
-    stiffness: NDArray[np.complex128]
-    recovery: NDArray[np.complex128]
+    stiffness_entries: list[list[Any]]
+    recovery_entries: list[list[Any]]
+
+    @property
+    def stiffness(self) -> NDArray[np.complex128]:
+        """``(n_freq, n_wheel, n_wheel)``, N/m."""
+        return np.asarray(stacked(self.stiffness_entries))
+
+    @property
+    def recovery(self) -> NDArray[np.complex128]:
+        """``(n_freq, n_dof, n_wheel)``: all DOF displacements per wheel displacement."""
+        return np.asarray(stacked(self.recovery_entries))
 
 
 @dataclass(frozen=True)
@@ -152,7 +165,7 @@ class Vehicle:
         """Index of the bounce DOF of each wheel's wheelset (``B`` is a selection)."""
         return np.array([self.dofs.index(f"{w.body}.bounce") for w in self.wheels])
 
-    def condensed_to_wheels(self, f: ArrayLike) -> WheelCondensation:
+    def condensed_to_wheels(self, f: ArrayLike, xp: Any = np) -> WheelCondensation:
         """Dynamic stiffness condensed onto the wheel DOFs, with the body recovery.
 
         With the DOFs split into bodies ``b`` and wheels ``w``,
@@ -160,38 +173,116 @@ class Vehicle:
         ``D_bb`` (the vehicle with its wheels held) is regular at every ``f > 0`` and at
         ``f = 0``, so no digits are lost at low frequency.
 
+        The body DOFs are eliminated one by one in the stacked layout (each matrix
+        entry one array over the frequencies; only the entries that are not zero for
+        the vehicle's tree of bodies are formed), the fewest-coupled first (the
+        bogies, then the car body), so each step is a few elementwise operations.
+        Frequencies where a pivot fails the test of :data:`railvib.stack.PIVOT_THRESHOLD`
+        are solved again densely, with LAPACK's pivoting.
+
         Parameters
         ----------
         f : array_like
-            Frequencies in Hz.
+            Frequencies in Hz, ``(n_freq,)`` (any stack of frequencies).
+        xp : module
+            Array namespace of the computation (:func:`railvib.stack.namespace`).
 
         Returns
         -------
         WheelCondensation
         """
+        omega = 2.0 * np.pi * xp.asarray(np.atleast_1d(np.asarray(f, dtype=float)))
+        omega2 = omega**2
+        m, c, k = self._matrices
+        d = {
+            (i, j): k[i, j] - omega2 * m[i, j] + (1j * c[i, j]) * omega
+            for i, j in self._elimination.pattern
+        }
+        bad = None
+        factors = []
+        for p, nb in self._elimination.steps:
+            pivot = d[(p, p)]
+            size = xp.abs(pivot)
+            for j in nb:
+                weak = size < PIVOT_THRESHOLD * xp.abs(d[_key(p, j)])
+                bad = weak if bad is None else (bad | weak)
+            with np.errstate(divide="ignore", invalid="ignore"):  # flagged above
+                inv = 1.0 / pivot
+            ell = {j: d[_key(p, j)] * inv for j in nb}
+            for ia, a in enumerate(nb):
+                for b in nb[ia:]:
+                    update = ell[a] * d[_key(p, b)]
+                    key = _key(a, b)
+                    d[key] = d[key] - update if key in d else -update
+            factors.append(ell)
+        wheels = [int(w) for w in self.wheel_dofs]
+        n_w = len(wheels)
+        zero = xp.zeros_like(omega, dtype=complex)
+        rows: dict[int, list[Any]] = {
+            w: [zero + 1.0 if b == iw else zero for b in range(n_w)] for iw, w in enumerate(wheels)
+        }
+        for (p, nb), ell in zip(reversed(self._elimination.steps), reversed(factors), strict=True):
+            rows[p] = [-dot([ell[j] for j in nb], [rows[j][b] for j in nb]) for b in range(n_w)]
+        stiffness = [[d.get(_key(a, b), zero) for b in wheels] for a in wheels]
+        recovery = [rows[i] for i in range(len(self.dofs))]
+        if bad is not None and bool(xp.any(bad)):
+            stiffness, recovery = self._dense_at(f, bad, stiffness, recovery, xp)
+        return WheelCondensation(stiffness, recovery)
+
+    def _dense_at(
+        self, f: ArrayLike, bad: Any, stiffness: list[list[Any]], recovery: list[list[Any]], xp: Any
+    ) -> tuple[list[list[Any]], list[list[Any]]]:
+        """The condensation at the frequencies `bad` solved densely (LAPACK, pivoting)."""
+        f_bad = np.atleast_1d(np.asarray(f, dtype=float))[to_numpy(bad)]
         order = self._body_then_wheel_order
         n_dof, n_w = int(order.size), int(self.wheel_dofs.size)
         n_b = n_dof - n_w
         m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
 
         def block(rows: slice, cols: slice) -> NDArray[np.complex128]:
-            return _dynamic_stiffness(f, m[rows, cols], c[rows, cols], k[rows, cols])
+            return _dynamic_stiffness(f_bad, m[rows, cols], c[rows, cols], k[rows, cols])
 
         bodies, wheels = slice(0, n_b), slice(n_b, n_dof)
         x = np.linalg.solve(block(bodies, bodies), block(bodies, wheels))  # D_bb^-1 D_bw
-        stiffness = block(wheels, wheels) - block(wheels, bodies) @ x
-        recovery = np.empty((int(x.shape[0]), n_dof, n_w), dtype=np.complex128)
-        recovery[:, order[:n_b], :] = -x
-        recovery[:, order[n_b:], :] = np.eye(n_w)
-        return WheelCondensation(
-            stiffness=np.asarray(stiffness, dtype=np.complex128), recovery=recovery
-        )
+        s_bad = block(wheels, wheels) - block(wheels, bodies) @ x
+        r_bad = np.empty((f_bad.size, n_dof, n_w), dtype=np.complex128)
+        r_bad[:, order[:n_b], :] = -x
+        r_bad[:, order[n_b:], :] = np.eye(n_w)
+        stiffness = [
+            [put(stiffness[a][b], bad, s_bad[:, a, b], xp) for b in range(n_w)] for a in range(n_w)
+        ]
+        recovery = [
+            [put(recovery[i][b], bad, r_bad[:, i, b], xp) for b in range(n_w)] for i in range(n_dof)
+        ]
+        return stiffness, recovery
 
     @cached_property
     def _body_then_wheel_order(self) -> NDArray[np.int64]:
         """DOF indices reordered: sprung-body DOFs first, then the wheel DOFs in wheel order."""
         w = self.wheel_dofs
         return np.concatenate([np.setdiff1d(np.arange(len(self.dofs)), w), w])
+
+    @cached_property
+    def _elimination(self) -> _Elimination:
+        """The order in which the body DOFs are eliminated, and the entries it touches."""
+        m, c, k = self._matrices
+        nonzero = (m != 0) | (c != 0) | (k != 0)
+        n = len(self.dofs)
+        pattern = {(i, j) for i in range(n) for j in range(i, n) if nonzero[i, j]}
+        linked = {i: {j for j in range(n) if j != i and nonzero[i, j]} for i in range(n)}
+        bodies = set(range(n)) - {int(w) for w in self.wheel_dofs}
+        steps = []
+        while bodies:
+            # minimum degree: the DOF coupled to the fewest others creates the least fill
+            p = min(bodies, key=lambda i: (len(linked[i]), i))
+            nb = sorted(linked[p])
+            for a in nb:
+                linked[a] |= set(nb) - {a}
+                linked[a].discard(p)
+            steps.append((p, tuple(nb)))
+            bodies.remove(p)
+            del linked[p]
+        return _Elimination(tuple(sorted(pattern)), tuple(steps))
 
     @property
     def _matrices(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
@@ -223,6 +314,23 @@ class Vehicle:
         kkt = np.block([[k, b], [b.T, np.zeros((m, m))]])
         sol = np.linalg.solve(kkt, np.concatenate([weight, np.zeros(m)]))
         return sol[n:]
+
+
+def _key(i: int, j: int) -> tuple[int, int]:
+    """Key of the symmetric entry ``(i, j)``: the upper triangle."""
+    return (i, j) if i <= j else (j, i)
+
+
+@dataclass(frozen=True)
+class _Elimination:
+    """The symbolic elimination of a vehicle's body DOFs.
+
+    ``pattern``: the entries ``(i <= j)`` of the dynamic stiffness that are not zero;
+    ``steps``: the pivots ``(dof, the dofs still coupled to it)`` in elimination order.
+    """
+
+    pattern: tuple[tuple[int, int], ...]
+    steps: tuple[tuple[int, tuple[int, ...]], ...]
 
 
 def _dynamic_stiffness(
