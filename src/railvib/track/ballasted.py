@@ -254,6 +254,4 @@ def ballasted_track(
     )
 
 
-TRACKS.register("ballasted", parameters=BALLASTED_PARAMETERS, build=ballasted_track)(
-    BallastedTrack
-)
+TRACKS.register("ballasted", parameters=BALLASTED_PARAMETERS, build=ballasted_track)(BallastedTrack)
