@@ -241,7 +241,32 @@ def ballasted_track(
     ballast_mass_kg: float | None = None,
     subgrade: PadModel | None = None,
 ) -> BallastedTrack:
-    """The ballasted track of a ``[track]`` table's checked values (see :class:`BallastedTrack`)."""
+    """The ballasted track of a ``[track]`` table's checked values (see :class:`BallastedTrack`).
+
+    Parameters
+    ----------
+    sleeper_spacing : float
+        Sleeper spacing d in m.
+    rail : Rail
+        The rail beam.
+    pad : PadModel
+        Railpad model per rail seat, N/m.
+    sleeper_mass_kg : float
+        Sleeper mass per rail seat in kg.
+    ballast : PadModel
+        Ballast model per rail seat, N/m.
+    pad_temperature_c : float, optional
+        Temperature of the pad (and layer) models in degC.
+    ballast_mass_kg : float, optional
+        Ballast mass per rail seat in kg (three layers).
+    subgrade : PadModel, optional
+        Subgrade model per rail seat, N/m (three layers).
+
+    Returns
+    -------
+    BallastedTrack
+        The track.
+    """
     return BallastedTrack(
         rail,
         pad,

@@ -336,6 +336,16 @@ class FiniteTrack:
         absorber from the rail node to the ground, the sleeper's ``-omega^2 m_s``, the
         ballast spring to the ground (or, for three layers, to the ballast-mass DOF with
         its ``-omega^2 m_b`` on the subgrade spring to the ground).
+
+        Parameters
+        ----------
+        f : float
+            Frequency in Hz.
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix
+            Complex, N/m.
         """
         kp = self._layer(self.pad, f)
         omega = 2.0 * np.pi * f
