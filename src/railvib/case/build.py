@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Any
 
 from railvib.case.schema import Case
 from railvib.contact import hertz_stiffness
@@ -68,8 +69,9 @@ def build_track(case: Case) -> PeriodicTrack:
     Returns
     -------
     PeriodicTrack
-        The rigid-base periodic track in SI units; in ``rail_pair`` mode EI, m, kappa G A,
-        rho I and the pad stiffness are doubled.
+        The periodic track of the case's ``track.model`` in SI units; in ``rail_pair``
+        mode EI, m, kappa G A, rho I, the pad (and ballast, subgrade) stiffness and the
+        masses per rail seat are doubled.
     """
     n = _rail_multiplier(case)
     rail = Rail(**case.track.rail.model_dump())
@@ -84,9 +86,22 @@ def build_track(case: Case) -> PeriodicTrack:
             rotary_inertia=n * rail.rotary_inertia,
         )
         pad = ScaledPad(pad, n)
-    values = {**case.track.model_dump(), "rail": rail, "pad": pad}
-    track = TRACKS.get(DEFAULT_TRACK_MODEL).build(**values)
-    assert isinstance(track, PeriodicTrack), "the default track is the rigid-base periodic track"
+    member = TRACKS.get(case.track.model or DEFAULT_TRACK_MODEL, "track")
+    given = case.track.model_dump()
+    values: dict[str, Any] = {
+        p.name: given[p.key]
+        for p in member.parameters
+        if given.get(p.key) is not None and p.kind not in ("member", "table")
+    }
+    values.update(rail=rail, pad=pad)
+    for p in member.parameters:
+        if p.kind == "member" and p.key != "pad" and given.get(p.key) is not None:
+            layer = PADS.from_dict(dict(given[p.key]), f"track.{p.key}")
+            values[p.name] = layer if n == 1.0 else ScaledPad(layer, n)
+        elif p.unit == "kg" and p.name in values:
+            values[p.name] = n * values[p.name]  # a mass per rail seat: both rails' seats
+    track = member.build(**values)
+    assert isinstance(track, PeriodicTrack), "every track model is a periodic track"
     return track
 
 

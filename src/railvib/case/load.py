@@ -180,7 +180,9 @@ def _check_models(case: Case) -> tuple[PadModel, NDArray[np.float64]]:
     """
     data = case.model_dump(mode="python")
     for location, family in FAMILY_TABLES.items():
-        family.from_dict(_table_at(data, location), ".".join(location))
+        table = _table_at(data, location)
+        if table is not None:  # an optional table left out (its model's needs are checked)
+            family.from_dict(table, ".".join(location))
     f = build_grid(case).f
     build_track(case).check_frequencies(f)
     temperature = case.track.pad_temperature_c

@@ -8,15 +8,16 @@ the key names another unit (``speed_kmh``, ``temperature_c``).
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any, Literal
 
 import tomli_w
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, create_model, field_validator, model_validator
 
 from railvib.case.sections import Section, section_model, table_section
 from railvib.errors import CaseError
 from railvib.outputs import ContactCheck
-from railvib.registry import Registry, declared_parameters
+from railvib.registry import Parameter, Registry, declared_parameters
 from railvib.spectra import SPECTRA
 from railvib.track import DEFAULT_TRACK_MODEL, TRACKS, Rail
 from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES
@@ -143,12 +144,61 @@ VehicleSection: Any = section_model(
 #: ``[track.rail]``: the rail beam, declared with :class:`~railvib.track.Rail`
 RailSection: Any = table_section(Rail)
 
-#: ``[track]``: the parameters of the default track model, declared with it
-TrackSection: Any = section_model(
-    "TrackSection",
-    TRACKS.get(DEFAULT_TRACK_MODEL).parameters,
-    "Rail on discrete railpads at every sleeper, rigid below.",
+#: the key of ``[track]`` naming its model (omitted: the default rigid-base track)
+TRACK_MODEL_KEY = Parameter(
+    "model",
+    "",
+    f"track model, one of {', '.join(TRACKS.names())} (omitted: {DEFAULT_TRACK_MODEL}; "
+    "`railvib models track`)",
+    "text",
+    default=None,
+    choices=tuple(TRACKS.names()),
 )
+
+
+def _track_parameters() -> tuple[Parameter, ...]:
+    """The keys of ``[track]``: the model, the default model's, then the other members' own.
+
+    The other members' keys are optional here and checked against the chosen model.
+    """
+    params = [TRACK_MODEL_KEY, *TRACKS.get(DEFAULT_TRACK_MODEL).parameters]
+    for member in TRACKS:
+        for p in member.parameters:
+            if p.key not in {q.key for q in params}:
+                params.append(dataclasses.replace(p, default=None))
+    return tuple(params)
+
+
+def _check_track_keys(self: Section) -> Section:
+    """Refuse keys of another track model, and require the chosen model's own keys."""
+    name = getattr(self, "model", None) or DEFAULT_TRACK_MODEL
+    member = TRACKS.get(name, "track")
+    own = {p.key: p for p in member.parameters}
+    for p in _track_parameters()[1:]:
+        value = getattr(self, p.key)
+        if p.key not in own and value is not None:
+            raise CaseError(
+                f"track.{p.key}", value, f"not a key of track model {name!r} (set track.model)"
+            )
+        if p.key in own and own[p.key].required and value is None:
+            unit = f" ({p.unit})" if p.unit not in ("", "-") else ""
+            raise CaseError(
+                f"track.{p.key}", "<missing>", f"required by track model {name!r}{unit}"
+            )
+    return self
+
+
+_TrackBase: Any = section_model(
+    "TrackSection", _track_parameters(), "Rail on discrete supports at every sleeper."
+)
+
+#: ``[track]``: the model and the parameters of every track model, declared with them
+TrackSection: Any = create_model(
+    "TrackSection",
+    __base__=_TrackBase,
+    __validators__={"_check_keys": model_validator(mode="after")(_check_track_keys)},  # type: ignore[dict-item]
+)
+TrackSection.__doc__ = "Rail on discrete supports at every sleeper (rigid base, ballast, ...)."
 
 
 class ContactSection(Section):
@@ -276,7 +326,7 @@ class Case(Section):
 FAMILY_TABLES: dict[tuple[str, ...], Registry[Any]] = {
     **{
         ("track", p.key): p.family
-        for p in TRACKS.get(DEFAULT_TRACK_MODEL).parameters
+        for p in _track_parameters()
         if p.kind == "member" and p.family is not None
     },
     ("irregularity",): SPECTRA,

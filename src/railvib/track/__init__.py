@@ -1,6 +1,15 @@
 """The rail as an infinite periodic structure (symplectic / wave method)."""
 
+from railvib.track.ballasted import BallastedTrack
 from railvib.track.base import DEFAULT_TRACK_MODEL, TRACKS, TrackModel
 from railvib.track.periodic import PeriodicTrack, Rail, TrackWaves
 
-__all__ = ["DEFAULT_TRACK_MODEL", "TRACKS", "PeriodicTrack", "Rail", "TrackModel", "TrackWaves"]
+__all__ = [
+    "DEFAULT_TRACK_MODEL",
+    "TRACKS",
+    "BallastedTrack",
+    "PeriodicTrack",
+    "Rail",
+    "TrackModel",
+    "TrackWaves",
+]

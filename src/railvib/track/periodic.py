@@ -265,8 +265,27 @@ class PeriodicTrack(TrackModel):
         beta4 = self.rail.mass_per_length * omega**2 * d**4 / self._ei
         return np.asarray(beta4, dtype=np.complex128)
 
+    def support_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """Complex stiffness of one rail seat's support seen by the rail, N/m, ``(n_freq,)``.
+
+        Here the railpad on a rigid base; a track with layers below the pad
+        (:class:`~railvib.track.ballasted.BallastedTrack`) condenses them into it.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``K*(f)`` in N/m.
+        """
+        f = np.asarray(f, dtype=float)
+        return np.asarray(self.pad.stiffness(f, self.pad_temperature), dtype=np.complex128)
+
     def _pad_hat(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
-        z = np.asarray(self.pad.stiffness(f, self.pad_temperature), dtype=complex)
+        z = self.support_stiffness(f)
         return np.asarray(z * self.sleeper_spacing**3 / self._ei, dtype=np.complex128)
 
     @fill_doc(_SHARED)
@@ -503,7 +522,7 @@ class PeriodicTrack(TrackModel):
         k = dynamic_stiffness(self._beta4(f), 1.0)
         scale = np.array([1.0, d, 1.0, d])
         k = k * scale[:, None] * scale[None, :] * ei / d**3
-        k[:, 2, 2] += self.pad.stiffness(f, self.pad_temperature)
+        k[:, 2, 2] += self.support_stiffness(f)
         return k
 
     @fill_doc(_SHARED)

@@ -6,7 +6,10 @@ model). The rail is an Euler-Bernoulli beam discretised with cubic Hermite
 elements (consistent mass), several per sleeper bay, plus extra nodes wherever a
 load or observation point lies inside a bay (so no shape-function interpolation
 is needed). A pad is a vertical spring (complex in the frequency domain) at every
-sleeper node, rigid below. The rail ends are free, just beyond the outermost
+sleeper node, rigid below; or, for the ballasted track, a pad spring to an explicit
+sleeper DOF of mass ``m_s`` on a ballast spring to the ground (and, for three layers,
+the ballast spring to an explicit ballast-mass DOF on a subgrade spring): these DOFs
+are assembled into the structure, not condensed. The rail ends are free, just beyond the outermost
 sleepers; optional absorbing layers of graded extra pad damping near both ends
 swallow the waves that reach them.
 
@@ -103,7 +106,18 @@ class FiniteTrack:
         Extra pad damping at the outermost sleeper in N s/m (>= 0); it grows
         quadratically from 0 at the inner edge of each layer.
     pad_temperature : float, optional
-        Pad temperature in degrees Celsius, passed to the pad model.
+        Pad temperature in degrees Celsius, passed to the pad (and layer) models.
+    ballast : PadModel, optional
+        Given: a sleeper DOF of mass `sleeper_mass` under every pad, on this ballast
+        (complex stiffness per rail seat, N/m) to a rigid ground. None: the pad stands
+        on a rigid base.
+    sleeper_mass : float
+        Sleeper mass per rail seat in kg (>= 0), with `ballast`.
+    subgrade : PadModel, optional
+        With `ballast`: a ballast-mass DOF of mass `ballast_mass` under the ballast,
+        on this subgrade (N/m) to the ground (the three-layer model).
+    ballast_mass : float
+        Ballast mass per rail seat in kg (> 0), with `subgrade`.
     """
 
     rail: Rail
@@ -116,8 +130,20 @@ class FiniteTrack:
     absorber_spans: int = 0
     absorber_damping: float = 0.0
     pad_temperature: float | None = None
+    ballast: PadModel | None = None
+    sleeper_mass: float = 0.0
+    subgrade: PadModel | None = None
+    ballast_mass: float = 0.0
 
     def __post_init__(self) -> None:
+        if not (np.isfinite(self.sleeper_mass) and self.sleeper_mass >= 0):
+            raise CaseError("finite_track.sleeper_mass", self.sleeper_mass, ">= 0 (kg)")
+        if self.subgrade is not None and not (
+            self.ballast is not None and np.isfinite(self.ballast_mass) and self.ballast_mass > 0
+        ):
+            raise CaseError(
+                "finite_track.ballast_mass", self.ballast_mass, "> 0 (kg), with a ballast"
+            )
         d = self.sleeper_spacing
         if not (np.isfinite(d) and d > 0):
             raise CaseError("track.sleeper_spacing", d, "must be > 0 (m)")
@@ -149,6 +175,10 @@ class FiniteTrack:
         absorber_spans: int = 0,
         absorber_damping: float = 0.0,
         pad_temperature: float | None = None,
+        ballast: PadModel | None = None,
+        sleeper_mass: float = 0.0,
+        subgrade: PadModel | None = None,
+        ballast_mass: float = 0.0,
     ) -> FiniteTrack:
         """Build a track with nodes at `positions` (m) and `margin_spans` bays beyond them.
 
@@ -174,6 +204,8 @@ class FiniteTrack:
             Extra pad damping at the outermost sleepers, N s/m (>= 0).
         pad_temperature : float, optional
             Pad temperature in degrees Celsius (degC), passed to the pad model.
+        ballast, sleeper_mass, subgrade, ballast_mass
+            The layers under the pads (N/m, kg), as in :class:`FiniteTrack`.
 
         Returns
         -------
@@ -196,6 +228,10 @@ class FiniteTrack:
             absorber_spans=int(absorber_spans),
             absorber_damping=float(absorber_damping),
             pad_temperature=pad_temperature,
+            ballast=ballast,
+            sleeper_mass=float(sleeper_mass),
+            subgrade=subgrade,
+            ballast_mass=float(ballast_mass),
         )
 
     # -- mesh -------------------------------------------------------------------------------
@@ -216,9 +252,15 @@ class FiniteTrack:
         return np.concatenate(pts)
 
     @property
+    def n_layers(self) -> int:
+        """Layers of explicit DOFs under the pads: 0 (rigid base), 1 (sleepers), 2 (+ ballast)."""
+        return 0 if self.ballast is None else (1 if self.subgrade is None else 2)
+
+    @property
     def n_dof(self) -> int:
-        """Number of DOFs, ``2 n_nodes`` (w, theta at each node)."""
-        return 2 * self.nodes.size
+        """Number of DOFs: ``2 n_nodes`` (w, theta at each node), then one per sleeper and layer."""
+        n_sl = self.last_sleeper - self.first_sleeper + 1
+        return 2 * self.nodes.size + self.n_layers * n_sl
 
     def node_index(self, x: ArrayLike) -> NDArray[np.intp]:
         """Index of the node at each position `x` (m); raises if a position is not a node."""
@@ -283,12 +325,58 @@ class FiniteTrack:
         diag[self.sleeper_dofs] = values
         return sp.diags(diag, format="csc")
 
+    def _layer(self, model: PadModel, f: float) -> complex:
+        return complex(np.asarray(model.stiffness(np.array([f]), self.pad_temperature)).ravel()[0])
+
     def pad_matrix(self, f: float) -> sp.csc_matrix:
-        """Complex pad (and absorber) stiffness at frequency `f` (Hz), diagonal, N/m."""
-        kp = complex(np.asarray(self.pad.stiffness(np.array([f]), self.pad_temperature))[0])
+        """Complex support matrix at frequency `f` (Hz), N/m, ``(n_dof, n_dof)``.
+
+        Rigid base: the pad (and absorber) stiffness on the diagonal at the sleepers.
+        Ballasted: the pad spring between each rail sleeper node and its sleeper DOF, the
+        absorber from the rail node to the ground, the sleeper's ``-omega^2 m_s``, the
+        ballast spring to the ground (or, for three layers, to the ballast-mass DOF with
+        its ``-omega^2 m_b`` on the subgrade spring to the ground).
+
+        Parameters
+        ----------
+        f : float
+            Frequency in Hz.
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix
+            Complex, N/m.
+        """
+        kp = self._layer(self.pad, f)
         omega = 2.0 * np.pi * f
         values = kp + 1j * omega * self.absorber_profile
-        return self._sleeper_diagonal(values.astype(complex))
+        diagonal = self._sleeper_diagonal(values.astype(complex))
+        if self.ballast is None:
+            return diagonal
+        n_sl = self.sleeper_dofs.size
+        rail = self.sleeper_dofs
+        first = 2 * self.nodes.size
+        sleeper = first + np.arange(n_sl)
+        kb = self._layer(self.ballast, f)
+        rows = [rail, sleeper, sleeper]
+        cols = [sleeper, rail, sleeper]
+        vals = [np.full(n_sl, -kp), np.full(n_sl, -kp), np.full(n_sl, kp + kb)]
+        vals[2] = vals[2] - omega**2 * self.sleeper_mass
+        if self.subgrade is not None:
+            ballast = sleeper + n_sl
+            kg = self._layer(self.subgrade, f)
+            rows += [sleeper, ballast, ballast]
+            cols += [ballast, sleeper, ballast]
+            vals += [
+                np.full(n_sl, -kb),
+                np.full(n_sl, -kb),
+                np.full(n_sl, kb + kg - omega**2 * self.ballast_mass),
+            ]
+        layers = sp.csc_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(self.n_dof, self.n_dof),
+        )
+        return (diagonal + layers).tocsc()
 
     def time_domain_matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
         """Real ``(M, C, K)`` for time integration (viscous pads only).
@@ -304,6 +392,10 @@ class FiniteTrack:
             If the pad is not a spring-damper (or the two-rail doubling of one) or the
             rail has a loss factor, which have no exact time-domain counterpart here.
         """
+        if self.ballast is not None:
+            raise CaseError(
+                "finite_track.ballast", "given", "none: the time-domain model is rigid-base only"
+            )
         check_pad(self.pad)
         check_rail(self.rail, time_domain=True)
         viscous = viscous_pad(self.pad)
