@@ -146,3 +146,28 @@ def test_gpu_benchmark_runs_its_numpy_path_and_meets_the_accuracy_goal(capsys):
     out = capsys.readouterr().out
     assert "backend numpy (on the CPU" in out
     assert "goal: max rel diff <= 1e-10: PASS" in out
+
+
+def test_pad_stack_evaluates_every_layer_at_its_cases_temperature():
+    # a ballasted track whose ballast depends on temperature (a viscous ballast under
+    # WLF): the stacked sweep must evaluate it at each case's pad temperature, as the
+    # case-by-case solver does
+    from railvib.pads.tts import WLF, TemperatureShifted
+
+    base = build_system(railvib.load_preset_case("thompson_ballasted"))
+    ballast = TemperatureShifted(SpringDamper(5.0e7, 4.0e4), WLF.universal(-40.0), 20.0)
+    system = replace(base, track=replace(base.track, ballast=ballast))
+    f = np.geomspace(1.0, 2000.0, 60)
+    pads = [SpringDamper(3.0e8, 2.0e4), SpringDamper(2.0e8, 2.0e4)]
+    temperatures = [-20.0, 20.0, -20.0]
+    chosen = [pads[0], pads[0], pads[1]]
+    v = np.array([20.0, 20.0, 30.0])
+    batch = frf_pad_stack(system, f, chosen, temperatures, v)
+    cold, warm = (ballast.stiffness(f, t) for t in (-20.0, 20.0))
+    assert np.max(np.abs(cold / warm - 1)) > 0.1  # the temperature matters here
+    for i in range(3):
+        track = replace(system.track, pad=chosen[i], pad_temperature=temperatures[i])
+        one = replace(system, track=track, speed=v[i]).frf(f)
+        # reason: the kernels reorder floating-point operations only (as above)
+        assert _max_rel(batch.vehicle[i], one.vehicle) < 1e-10
+        assert _max_rel(batch.rail[i], one.rail) < 1e-10

@@ -109,10 +109,16 @@ def frf_pad_stack(
     x = system.wheel_positions
     points = np.tile(f, len(distinct))
     rec = np.empty((points.size, x.size, x.size), dtype=np.complex128)
-    for start in range(0, points.size, FREQUENCY_BLOCK):  # blocks sized to the cache
-        sl = slice(start, start + FREQUENCY_BLOCK)
-        track = replace(system.track, pad=PadStack(k_pad[sl]), pad_temperature=None)
-        rec[sl] = track.receptance(points[sl], x, x)
+    # the stacked pad ignores the temperature, but the track's other layers (a ballasted
+    # track's ballast) take it: the points are solved in cache-sized blocks of one
+    # temperature each
+    rows = np.arange(points.size).reshape(len(distinct), f.size)
+    for temperature in dict.fromkeys(t for _, t in distinct):
+        at = rows[[i for i, (_, t) in enumerate(distinct) if t == temperature]].ravel()
+        for start in range(0, at.size, FREQUENCY_BLOCK):
+            idx = at[start : start + FREQUENCY_BLOCK]
+            track = replace(system.track, pad=PadStack(k_pad[idx]), pad_temperature=temperature)
+            rec[idx] = track.receptance(points[idx], x, x)
     vehicle = system.vehicle
     cond = vehicle.condensed_to_wheels(f) if condensation is None else condensation
     delays = vehicle.wheel_offsets[None, :] / speeds[:, None]  # (n_case, n_w)
