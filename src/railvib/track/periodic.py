@@ -67,6 +67,11 @@ WEAK_CROSS_PRODUCT = 1e-3
 #: ``eta_r -> 0+`` (``exp(+i omega t)``), evaluated at this value (docs/design/0002-track-solver.md)
 VANISHING_LOSS_FACTOR = 1e-12
 
+#: relative distance within which a Timoshenko rail's cut-off frequency and one of its
+#: pinned-pinned frequencies coincide, and around the cut-off within which the solver's
+#: precision degrades then (docs/design/0002-track-solver.md, "An open defect")
+COINCIDENCE_WINDOW = 1e-2
+
 #: mirror image ``x -> -x`` of a state ``(w, d psi, d^2 psi', d^3 v)``
 _MIRROR = np.array([1.0, -1.0, 1.0, -1.0])
 
@@ -143,6 +148,16 @@ class Rail:
     def complex_bending_stiffness(self) -> complex:
         """``EI (1 + i eta_r)`` in N m^2."""
         return self.bending_stiffness * (1.0 + 1j * self.loss_factor)
+
+    @property
+    def cut_off_frequency_hz(self) -> float | None:
+        """Cut-off of a Timoshenko rail's second wave pair, ``sqrt(kGA / rho I) / 2 pi``, Hz.
+
+        None for an Euler rail or a Timoshenko rail without rotary inertia (no cut-off).
+        """
+        if self.shear_stiffness is None or self.rotary_inertia <= 0:
+            return None
+        return float(np.sqrt(self.shear_stiffness / self.rotary_inertia) / (2.0 * np.pi))
 
 
 @dataclass(frozen=True, eq=False)
@@ -246,6 +261,70 @@ class PeriodicTrack(TrackModel):
                 "what the bay's series can hold); lower f_max or check track.sleeper_spacing "
                 "and track.rail (Hz)",
             )
+
+    def pinned_pinned_frequencies_hz(self, f_max: float) -> NDArray[np.float64]:
+        """Pinned-pinned frequencies of one bay up to `f_max`, Hz.
+
+        The n-th bending mode of a span simply supported at both sleepers, ``k = n pi / d``:
+        ``omega^2 = EI k^4 / m`` for an Euler rail; for a Timoshenko rail the lower root of
+        ``rho I (m / kGA) omega^4 - ((EI m / kGA + rho I) k^2 + m) omega^2 + EI k^4 = 0``.
+
+        Parameters
+        ----------
+        f_max : float
+            Highest frequency, Hz.
+
+        Returns
+        -------
+        numpy.ndarray
+            Ascending frequencies in Hz.
+        """
+        rail, d = self.rail, self.sleeper_spacing
+        ei, m = rail.bending_stiffness, rail.mass_per_length
+        out: list[float] = []
+        n = 1
+        while True:
+            k = n * np.pi / d
+            if rail.shear_stiffness is None:
+                w2 = ei * k**4 / m
+            else:  # the lower root, in the form without cancellation
+                kga, rho_i = rail.shear_stiffness, rail.rotary_inertia
+                a, b = rho_i * m / kga, -((ei * m / kga + rho_i) * k**2 + m)
+                w2 = 2.0 * ei * k**4 / (-b + np.sqrt(b * b - 4.0 * a * ei * k**4))
+            f_n = float(np.sqrt(w2) / (2.0 * np.pi))
+            if f_n > f_max:
+                return np.asarray(out, dtype=np.float64)
+            out.append(f_n)
+            n += 1
+
+    def cut_off_coincidence(self, f: ArrayLike) -> NDArray[np.bool_]:
+        """Frequencies where a Timoshenko rail's cut-off meets a pinned-pinned frequency.
+
+        When the cut-off frequency (:attr:`Rail.cut_off_frequency_hz`) lies within
+        :data:`COINCIDENCE_WINDOW` of a pinned-pinned frequency, both wave pairs of the bay
+        have their propagation constants near ``+-1`` at once (a nearly quadruple root)
+        and the wave solution loses precision within that window of the cut-off (measured
+        in docs/design/0002-track-solver.md: reciprocity 4e-9 at 1 % apart, 1.5e-5 at
+        0.1 %, 0.12 where they coincide). :meth:`waves` warns there.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+
+        Returns
+        -------
+        numpy.ndarray of bool
+            True at the frequencies within the window of such a cut-off.
+        """
+        f = np.atleast_1d(np.asarray(f, dtype=float))
+        f_c = self.rail.cut_off_frequency_hz
+        if f_c is None:
+            return np.zeros(f.shape, dtype=bool)
+        f_pp = self.pinned_pinned_frequencies_hz(f_c * (1.0 + COINCIDENCE_WINDOW))
+        if not np.any(np.abs(f_pp / f_c - 1.0) < COINCIDENCE_WINDOW):
+            return np.zeros(f.shape, dtype=bool)
+        return np.abs(f / f_c - 1.0) < COINCIDENCE_WINDOW
 
     # -- dimensionless kernels ------------------------------------------------------------
     @property
@@ -351,6 +430,7 @@ class PeriodicTrack(TrackModel):
         half = self.span_transfer(f, 0.5)
         pad = self._pad_hat(f)
         if self.rail.is_timoshenko:
+            _warn_if_cut_off_coincides(self, f)
             coefficients = _characteristic(_cell(half, pad))
         else:
             coefficients = _euler_characteristic(self._beta4(f), pad)
@@ -577,6 +657,22 @@ def _warn_if_ill_conditioned(f: NDArray[np.float64], estimate: NDArray[np.float6
             f"~{estimate.max():.1e}); the mid-span response there is physically unbounded "
             f"and is given for a rail loss factor of {VANISHING_LOSS_FACTOR:g}. "
             "Set track.rail.loss_factor (e.g. 0.01) or move the grid point.",
+            SolverWarning,
+            stacklevel=3,
+        )
+
+
+def _warn_if_cut_off_coincides(track: PeriodicTrack, f: NDArray[np.float64]) -> None:
+    """Warn at the frequencies of :meth:`PeriodicTrack.cut_off_coincidence`."""
+    bad = track.cut_off_coincidence(f)
+    if np.any(bad):
+        warnings.warn(
+            f"{int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) lie within "
+            f"{COINCIDENCE_WINDOW:.0%} of the Timoshenko rail's cut-off frequency "
+            f"{track.rail.cut_off_frequency_hz:.6g} Hz, which meets one of its pinned-pinned "
+            "frequencies: the wave solution loses precision there (up to 1e-1 where they "
+            "coincide, docs/design/0002-track-solver.md); change track.rail.shear_stiffness "
+            "or rotary_inertia slightly, or move the grid points.",
             SolverWarning,
             stacklevel=3,
         )
