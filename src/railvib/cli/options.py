@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-__all__ = ["output_option"]
+__all__ = ["output_option", "vertical_shift_options"]
 
 
 def output_option(default: Path | None, help: str = "output folder") -> Callable[[Any], Any]:
@@ -30,3 +30,31 @@ def output_option(default: Path | None, help: str = "output folder") -> Callable
         show_default=default is not None,
         help=help,
     )
+
+
+def vertical_shift_options(command: Callable[..., Any]) -> Callable[..., Any]:
+    """The TTS vertical-factor options of a pad command.
+
+    ``--no-vertical-shift`` (parameter ``no_vertical_shift``) and
+    ``--expansion-coefficient`` (``expansion_coefficient``, 1/K, the paper's 4.8e-4).
+
+    Parameters
+    ----------
+    command : callable
+        The click command (or the function below its other options).
+
+    Returns
+    -------
+    callable
+        `command` with both options added.
+    """
+    command = click.option(
+        "--expansion-coefficient",
+        type=float,
+        default=4.8e-4,
+        show_default=True,
+        help="volume expansion coefficient a_f, 1/K",
+    )(command)
+    return click.option(
+        "--no-vertical-shift", is_flag=True, help="skip the rho T / (rho0 T0) factor"
+    )(command)

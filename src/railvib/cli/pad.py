@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from railvib.cli.options import output_option
+from railvib.cli.options import output_option, vertical_shift_options
 from railvib.errors import CaseError
 
 __all__ = ["pad"]
@@ -84,14 +84,7 @@ def example(multifrequency: bool, outdir: Path) -> None:
     default=None,
     help="temperature at which --c1/--c2 apply, degC [default: reference temperature]",
 )
-@click.option("--no-vertical-shift", is_flag=True, help="skip the rho T / (rho0 T0) factor")
-@click.option(
-    "--expansion-coefficient",
-    type=float,
-    default=4.8e-4,
-    show_default=True,
-    help="volume expansion coefficient a_f, 1/K",
-)
+@vertical_shift_options
 @click.option("--n-terms", type=int, default=None, help="Prony branches (generalized_maxwell)")
 @click.option(
     "--temperatures",
@@ -176,14 +169,7 @@ def fit(
     default=None,
     help="test frequency to use when DATA holds several, Hz",
 )
-@click.option("--no-vertical-shift", is_flag=True, help="skip the rho T / (rho0 T0) factor")
-@click.option(
-    "--expansion-coefficient",
-    type=float,
-    default=4.8e-4,
-    show_default=True,
-    help="volume expansion coefficient a_f, 1/K",
-)
+@vertical_shift_options
 @click.option(
     "--band",
     default="5,1000",
