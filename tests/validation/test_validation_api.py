@@ -7,6 +7,8 @@ tiny: these tests check the plumbing, not the accuracy (that is
 ``test_validation_acceptance.py``).
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -25,8 +27,11 @@ from railvib.validation import (
     finite_track_frf,
     monte_carlo,
     validate_case,
+    validate_to_folder,
+    validation_files,
     write_validation,
 )
+from railvib.validation import report as report_module
 from railvib.vehicle import PitchPlaneParameters, pitch_plane_10dof
 
 K_H = 9.873e8
@@ -154,3 +159,33 @@ def test_written_datasets_load_back_identical(tiny_result, tmp_path):
     assert mc.attrs["realisations"] == 2
     assert (tmp_path / "tiny_agreement.md").is_file()
     assert not list(tmp_path.glob("*.part"))
+
+
+def test_validate_to_folder_writes_exactly_the_listed_files(
+    system, tiny_result, monkeypatch, tmp_path
+):
+    # validate_case is replaced by the module's tiny result: this tests the file set only
+    monkeypatch.setattr(report_module, "validate_case", lambda *a, **k: tiny_result)
+    out = tmp_path / "out"
+    validate_to_folder(system, SPECTRUM, out, name="tiny")
+    assert sorted(p.name for p in out.iterdir()) == sorted(validation_files("tiny"))
+
+
+def test_a_failing_validation_leaves_the_earlier_set_and_the_users_files(
+    system, tiny_result, monkeypatch, tmp_path
+):
+    monkeypatch.setattr(report_module, "validate_case", lambda *a, **k: tiny_result)
+    out = tmp_path / "out"
+    validate_to_folder(system, SPECTRUM, out, name="tiny")
+    (out / "notes.txt").write_text("mine", encoding="utf-8")
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+
+    def fail_after_the_first_file(result, outdir, name):
+        (Path(outdir) / f"{name}_agreement.md").write_text("half", encoding="utf-8")
+        raise OSError("simulated failure half-way through the writes")
+
+    monkeypatch.setattr(report_module, "write_validation", fail_after_the_first_file)
+    with pytest.raises(OSError, match="half-way"):
+        validate_to_folder(system, SPECTRUM, out, name="tiny")
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
+    assert not list(tmp_path.glob(".*"))  # no staging folder left beside it

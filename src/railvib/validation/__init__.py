@@ -16,7 +16,7 @@ welch_psd, welch_expectation, confidence_band
     Statistics.
 validate_case, ValidationSettings, ValidationResult, plot_overlays
     The three-way comparison of issue 5.
-validate_to_folder, write_validation, agreement_markdown, agreement_text
+validate_to_folder, validation_files, write_validation, agreement_markdown, agreement_text
     The comparison's files (overlays, Markdown, netCDF) and its terminal table: the
     library behind ``railvib validate``.
 check_scope
@@ -36,6 +36,7 @@ from railvib.validation.report import (
     agreement_markdown,
     agreement_text,
     validate_to_folder,
+    validation_files,
     write_validation,
 )
 from railvib.validation.result import ValidationResult, ValidationSettings, monte_carlo_work
@@ -79,6 +80,7 @@ __all__ = [
     "simulate_time_domain",
     "validate_case",
     "validate_to_folder",
+    "validation_files",
     "welch_dof",
     "welch_expectation",
     "welch_psd",

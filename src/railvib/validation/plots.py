@@ -10,10 +10,28 @@ from railvib.io import save_figure
 from railvib.labels import rail_label
 from railvib.validation.result import ValidationResult
 
-__all__ = ["DEFAULT_PLOT_RESPONSES", "plot_overlays"]
+__all__ = ["DEFAULT_PLOT_RESPONSES", "plot_file_name", "plot_overlays"]
 
 #: car body, bogie, wheelset and rail (the paper's figures)
 DEFAULT_PLOT_RESPONSES = ("carbody.bounce", "bogie1.bounce", "wheelset2.bounce", rail_label(1))
+
+
+def plot_file_name(prefix: str, response: str) -> str:
+    """The file name of the overlay of `response`: ``<prefix>_<response>.png`` (``.``, ``@``: ``_``).
+
+    Parameters
+    ----------
+    prefix : str
+        File name prefix.
+    response : str
+        Response label, e.g. ``rail@wheel1``.
+
+    Returns
+    -------
+    str
+        The PNG's file name.
+    """
+    return f"{prefix}_{response.replace('.', '_').replace('@', '_')}.png"
 
 
 def plot_overlays(
@@ -64,6 +82,6 @@ def plot_overlays(
         ax.set_title(f"{resp}: FE max err {err:.1e}, PEM in MC band {frac:.0%}")
         ax.legend(fontsize=8)
         ax.grid(True, which="both", lw=0.3)
-        path = out / f"{prefix}_{resp.replace('.', '_').replace('@', '_')}.png"
+        path = out / plot_file_name(prefix, resp)
         written.append(save_figure(fig, path))
     return written

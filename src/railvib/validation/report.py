@@ -11,7 +11,10 @@ one folder and under one name prefix,
   :func:`railvib.results.save_netcdf`; read them back with
   :func:`railvib.results.load_netcdf`).
 
-Every file is written atomically.
+Every file is written atomically, and the set as a whole: the files are written into a
+staging folder that replaces the earlier set only once all of them are complete
+(:func:`railvib.io.staged_folder`), so a run killed or failing half-way leaves `outdir` as
+it was.
 """
 
 from __future__ import annotations
@@ -20,11 +23,11 @@ from collections.abc import Callable
 from pathlib import Path
 
 from railvib.coupling import CoupledSystem
-from railvib.io import write_text
+from railvib.io import staged_folder, write_text
 from railvib.results.dataset import save_netcdf
 from railvib.spectra.base import SpatialSpectrum
 from railvib.validation.compare import validate_case
-from railvib.validation.plots import plot_overlays
+from railvib.validation.plots import DEFAULT_PLOT_RESPONSES, plot_file_name, plot_overlays
 from railvib.validation.result import (
     BAND_FRACTION,
     FRF_TOLERANCE,
@@ -38,11 +41,29 @@ __all__ = [
     "agreement_markdown",
     "agreement_text",
     "validate_to_folder",
+    "validation_files",
     "write_validation",
 ]
 
 #: the datasets of a :class:`ValidationResult` written as ``<name>_<key>.nc``
 DATASETS = ("frf", "mc", "table")
+
+
+def validation_files(name: str) -> tuple[str, ...]:
+    """The names of the files :func:`validate_to_folder` writes under the prefix `name`.
+
+    Parameters
+    ----------
+    name : str
+        Prefix of the file names.
+
+    Returns
+    -------
+    tuple of str
+        Overlay PNGs, the Markdown report and the netCDF datasets.
+    """
+    plots = tuple(plot_file_name(name, response) for response in DEFAULT_PLOT_RESPONSES)
+    return (*plots, f"{name}_agreement.md", *(f"{name}_{key}.nc" for key in DATASETS))
 
 
 def agreement_markdown(result: ValidationResult, name: str) -> str:
@@ -163,7 +184,8 @@ def validate_to_folder(
     spectrum : SpatialSpectrum
         One-sided irregularity spectrum, m^2/(rad/m).
     outdir : str or pathlib.Path
-        Output folder (created first, so an unwritable path fails before the run).
+        Output folder (checked first, so an unwritable path fails before the run; the
+        files land there together at the end).
     settings : ValidationSettings, optional
         Defaults to ``ValidationSettings()``; ``ValidationSettings.quick()`` runs in
         about 20 s.
@@ -184,14 +206,14 @@ def validate_to_folder(
         PSDs in (m/s^2)^2/Hz ((rad/s^2)^2/Hz for pitch), timings in s.
     """
     check_scope(system)
-    Path(outdir).mkdir(parents=True, exist_ok=True)
-    result = validate_case(
-        system,
-        spectrum,
-        settings=settings,
-        seed=seed,
-        progress=progress,
-        frf_progress=frf_progress,
-    )
-    write_validation(result, outdir, name)
+    with staged_folder(outdir, validation_files(name)) as stage:
+        result = validate_case(
+            system,
+            spectrum,
+            settings=settings,
+            seed=seed,
+            progress=progress,
+            frf_progress=frf_progress,
+        )
+        write_validation(result, stage.path, name)
     return result
