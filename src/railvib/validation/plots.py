@@ -17,7 +17,7 @@ DEFAULT_PLOT_RESPONSES = ("carbody.bounce", "bogie1.bounce", "wheelset2.bounce",
 
 
 def plot_file_name(prefix: str, response: str) -> str:
-    """The file name of the overlay of `response`: ``<prefix>_<response>.png`` (``.``, ``@``: ``_``).
+    """The overlay PNG of `response`: ``<prefix>_<response>.png`` (``.`` and ``@`` as ``_``).
 
     Parameters
     ----------
