@@ -192,9 +192,11 @@ def load_sweep_dataset(path: str | Path) -> xr.Dataset:
         if not any((path / name).exists() for name in _ZARR_MARKERS):
             raise CaseError("sweep", str(path), _not_a_sweep_folder(path))
         try:
-            return xr.open_zarr(path, consolidated=True).load()
+            ds = xr.open_zarr(path, consolidated=True).load()
         except (OSError, ValueError, KeyError) as exc:  # zarr's errors derive from these
             raise CaseError("sweep", str(path), f"a readable sweep.zarr store ({exc})") from None
+        _check_complete(ds, path)
+        return ds
     if path.suffix == ".nc" and path.is_file():
         try:
             ds = load_netcdf(path)  # booleans (linear_model_valid) come back boolean
@@ -205,6 +207,26 @@ def load_sweep_dataset(path: str | Path) -> xr.Dataset:
             raise CaseError("sweep", str(path), f"a sweep's netCDF export; {_RUN_RESULT}")
         return ds
     raise CaseError("sweep", str(path), f"{_WHAT}; this is not one")
+
+
+def _check_complete(ds: xr.Dataset, path: Path) -> None:
+    """Refuse a store with values missing: Zarr reads a deleted chunk file as NaN.
+
+    Every value a sweep writes is finite (a case whose result is not is an error of
+    its own), so a NaN in a real or complex variable means a chunk of the store was
+    deleted or overwritten after the sweep finished.
+    """
+    for name, da in ds.data_vars.items():
+        if da.dtype.kind in "fc":
+            missing = int(np.count_nonzero(~np.isfinite(da.values)))
+            if missing:
+                raise CaseError(
+                    "sweep",
+                    str(path),
+                    f"a complete sweep.zarr store ({name} has {missing:,} of {da.size:,} "
+                    "values missing: chunk files deleted or damaged); rerun the same "
+                    "`railvib sweep` command, which rebuilds sweep.zarr from its finished cases",
+                )
 
 
 #: what a sweep result is, as said in errors
