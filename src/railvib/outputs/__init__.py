@@ -14,11 +14,15 @@ from railvib.outputs.contact import (
     linearity_note,
     loss_of_contact_threshold,
 )
+from railvib.outputs.octave import OctaveBands, ThirdOctave, band_mean_square, third_octave_bands
 
 __all__ = [
     "DEFAULT_OUTPUTS",
     "LOSS_OF_CONTACT_NOTE",
     "OUTPUTS",
+    "OctaveBands",
+    "ThirdOctave",
+    "band_mean_square",
     "ContactCheck",
     "DerivedOutput",
     "contact_line",
@@ -27,4 +31,5 @@ __all__ = [
     "is_linear_model_valid",
     "linearity_note",
     "loss_of_contact_threshold",
+    "third_octave_bands",
 ]
