@@ -5,6 +5,7 @@ Each output is a registered member of :data:`OUTPUTS` in a module of its own;
 """
 
 from railvib.outputs.base import DEFAULT_OUTPUTS, OUTPUTS, DerivedOutput, derive
+from railvib.outputs.comfort import RideComfort, floor_geometry
 from railvib.outputs.contact import (
     LOSS_OF_CONTACT_NOTE,
     ContactCheck,
@@ -20,6 +21,7 @@ __all__ = [
     "DEFAULT_OUTPUTS",
     "LOSS_OF_CONTACT_NOTE",
     "OUTPUTS",
+    "RideComfort",
     "OctaveBands",
     "ThirdOctave",
     "band_mean_square",
@@ -28,6 +30,7 @@ __all__ = [
     "contact_line",
     "contact_table",
     "derive",
+    "floor_geometry",
     "is_linear_model_valid",
     "linearity_note",
     "loss_of_contact_threshold",
