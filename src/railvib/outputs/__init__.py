@@ -15,6 +15,7 @@ from railvib.outputs.contact import (
     linearity_note,
     loss_of_contact_threshold,
 )
+from railvib.outputs.forces import WheelRailForces
 from railvib.outputs.octave import OctaveBands, ThirdOctave, band_mean_square, third_octave_bands
 
 __all__ = [
@@ -24,6 +25,7 @@ __all__ = [
     "RideComfort",
     "OctaveBands",
     "ThirdOctave",
+    "WheelRailForces",
     "band_mean_square",
     "ContactCheck",
     "DerivedOutput",
