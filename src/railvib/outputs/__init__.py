@@ -17,6 +17,7 @@ from railvib.outputs.contact import (
 )
 from railvib.outputs.forces import WheelRailForces
 from railvib.outputs.octave import OctaveBands, ThirdOctave, band_mean_square, third_octave_bands
+from railvib.outputs.report import criteria_lines, criteria_table, octave_table
 
 __all__ = [
     "DEFAULT_OUTPUTS",
@@ -30,11 +31,14 @@ __all__ = [
     "ContactCheck",
     "DerivedOutput",
     "contact_line",
+    "criteria_lines",
+    "criteria_table",
     "contact_table",
     "derive",
     "floor_geometry",
     "is_linear_model_valid",
     "linearity_note",
+    "octave_table",
     "loss_of_contact_threshold",
     "third_octave_bands",
 ]
