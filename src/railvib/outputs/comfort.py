@@ -418,6 +418,9 @@ class RideComfort(DerivedOutput):
                 [comfort_category(float(a)) for a in a_w],
                 dims=("floor",),
                 coords=floor,
-                attrs={"units": "", "long_name": "ISO 2631-1:1997, Annex C, C.2.3"},
+                attrs={
+                    "units": "1",
+                    "long_name": "comfort category, ISO 2631-1:1997, Annex C, C.2.3",
+                },
             )
         return out
