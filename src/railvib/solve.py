@@ -177,7 +177,7 @@ def criteria_settings(
         response), a floor point outside the car body, a band outside the grid or
         outside the range where the weighting is defined.
     """
-    c = case.criteria or CriteriaSection()
+    c = case.criteria or CriteriaSection.model_validate({})
     out: dict[str, dict[str, Any]] = {"wheel_rail_forces": {}}
     octave = ThirdOctave(*(c.octave_band_hz or (0.0, 0.0)))
     if c.octave_band_hz is not None or third_octave_bands(f[0], f[-1]).index.size:
@@ -190,7 +190,7 @@ def criteria_settings(
     if band is None:
         return out
     geometry = floor_geometry(system.vehicle, c.comfort_body)
-    settings = {
+    settings: dict[str, Any] = {
         "floor_positions_m": tuple(c.floor_positions_m or geometry.positions),
         "floor_extent_m": geometry.extent,
         "weighting": c.comfort_weighting,

@@ -88,8 +88,9 @@ class FloorGeometry:
         Default floor points, m from the body's centre, positive forward: over each
         secondary suspension (the bogie centres) and the centre.
     extent : tuple of float
-        ``(rear, front)``, m from the body's centre: the outermost wheels (the vehicle
-        model carries no car-body length; floor points are taken within the wheelbase).
+        ``(rear, front)``, m from the body's centre: for the car body the outermost wheels
+        (the vehicle model carries no car-body length; floor points are taken within
+        the wheelbase).
     """
 
     body: str
@@ -99,6 +100,11 @@ class FloorGeometry:
 
 def floor_geometry(vehicle: Vehicle, body: str = "carbody") -> FloorGeometry:
     """The default floor points and the extent of `body`, from the vehicle's parts.
+
+    The default points are over the suspensions `body` rests on (for the car body: the
+    secondary suspensions, over the bogie centres) and its centre; the extent is the
+    vehicle's wheelbase for the top body (one that hangs on no suspension), else the
+    span of the suspensions it rests on.
 
     Parameters
     ----------
@@ -112,13 +118,14 @@ def floor_geometry(vehicle: Vehicle, body: str = "carbody") -> FloorGeometry:
     FloorGeometry
     """
     x0 = next(b.x for b in vehicle.bodies if b.name == body)
-    over = sorted(
-        {a.x - x0 for s in vehicle.suspensions for a in (s.upper, s.lower) if a.body == body},
-        reverse=True,
-    )
-    wheels = [w.x - x0 for w in vehicle.wheels]
-    positions = tuple(dict.fromkeys([*over[:1], 0.0, *over[-1:]]))
-    return FloorGeometry(body, positions, (min(wheels), max(wheels)))
+    under = sorted({s.upper.x - x0 for s in vehicle.suspensions if s.upper.body == body})
+    positions = tuple(dict.fromkeys([*under[-1:], 0.0, *under[:1]]))
+    if any(s.lower.body == body for s in vehicle.suspensions):
+        extent = (min(under, default=0.0), max(under, default=0.0))
+    else:
+        wheels = [w.x - x0 for w in vehicle.wheels]
+        extent = (min(wheels), max(wheels))
+    return FloorGeometry(body, positions, extent)
 
 
 def floor_acceleration_psd(
@@ -295,8 +302,8 @@ class RideComfort(DerivedOutput):
                 raise CaseError(
                     f"criteria.floor_positions_m[{i}]",
                     s,
-                    f"a point of the car body floor, {lo:g} <= s <= {hi:g} from its centre "
-                    "(the outermost wheels) (m)",
+                    f"a point of the {self.body} floor, {lo:g} <= s <= {hi:g} from its centre "
+                    "(for the car body: between the outermost wheels) (m)",
                 )
         f_lo, f_hi = self.band_hz
         if not (COMFORT_RANGE_HZ[0] <= f_lo < f_hi <= COMFORT_RANGE_HZ[1]):

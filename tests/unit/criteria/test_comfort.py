@@ -156,3 +156,16 @@ def test_band_outside_the_grid_is_refused():
     comfort = RideComfort(floor_positions_m=(0.0,))
     with pytest.raises(CaseError, match="criteria.comfort_band_hz.*grid 1-200"):
         comfort.band(np.linspace(1.0, 200.0, 10))
+
+
+def test_floor_geometry_comes_from_the_vehicle():
+    import railvib
+    from railvib.case import build_system
+    from railvib.outputs import floor_geometry
+
+    case = railvib.load_preset_case()
+    lc = case.vehicle.bogie_half_spacing
+    lt = case.vehicle.wheelset_half_spacing
+    geometry = floor_geometry(build_system(case).vehicle)
+    assert geometry.positions == pytest.approx((lc, 0.0, -lc), abs=1e-12)  # over the bogies
+    assert geometry.extent == pytest.approx((-lc - lt, lc + lt), abs=1e-12)  # the wheelbase
