@@ -342,11 +342,61 @@ class RideComfort(DerivedOutput):
             )
         return max(f_lo, float(f[0])), min(f_hi, float(f[-1]))
 
+    def floor_coordinate(self) -> dict[str, tuple[str, NDArray[np.float64], dict[str, str]]]:
+        """The ``floor`` coordinate: the floor points, m from the body's centre, forward."""
+        positions = np.asarray(self.floor_positions_m, dtype=float)
+        attrs = {"units": "m", "long_name": f"floor point of the {self.body}, from its centre"}
+        return {"floor": ("floor", positions, attrs)}
+
+    def variable_attrs(self, band: tuple[float, float]) -> dict[str, dict[str, str]]:
+        """``units``, ``long_name`` and the standard of each variable :meth:`compute` returns.
+
+        Parameters
+        ----------
+        band : (float, float)
+            The band evaluated, Hz (:meth:`band`).
+
+        Returns
+        -------
+        dict of dict
+            By variable name.
+        """
+        text = f"{band[0]:g}-{band[1]:g} Hz"
+        return {
+            "psd_floor_acceleration": {
+                "units": "(m/s^2)^2/Hz",
+                "long_name": f"vertical acceleration PSD of the {self.body} floor",
+            },
+            "comfort_aw": {
+                "units": "m/s^2",
+                "long_name": f"weighted RMS acceleration a_w ({self.weighting}), {text}",
+                "weighting": self.weighting,
+                "band": text,
+                "standard": WEIGHTINGS[self.weighting].source + "; ISO 2631-1:1997, 6.4.2",
+            },
+            "mean_comfort_index": {
+                "units": "1",
+                "long_name": f"mean comfort index N_MV ~ 6 a_zWb (vertical part), {text}",
+                "standard": "EN 12299:2009, 6.2 (simplified method); the 95th percentile "
+                "of 5-s RMS values replaced by the RMS of the stationary response",
+            },
+            "sperling_wz": {
+                "units": "1",
+                "long_name": f"Sperling ride index Wz = (100 sqrt(2) a_B)^0.3, {text}",
+                "standard": "Sperling (1941); filter B(f) of Garg and Dukkipati (1984)",
+            },
+            "comfort_category": {
+                "units": "1",
+                "long_name": "comfort category, ISO 2631-1:1997, Annex C, C.2.3",
+            },
+        }
+
     def compute(self, ds: xr.Dataset) -> dict[str, xr.DataArray]:
         """Floor PSDs and a_w, category, N_MV and Wz at each floor point (dimension ``floor``).
 
-        Reads ``frf_displacement`` (complex, ``frequency`` x ``response``) and
-        ``irregularity_psd`` of a run's dataset.
+        Reads ``frf_displacement`` (complex, ``frequency`` x ``response``, optionally
+        leading dimensions such as the cases of a sweep) and ``irregularity_psd``. The
+        category (text) is given for one run only (no leading dimension).
         """
         f = ds["frequency"].values
         band = self.band(f)
@@ -357,8 +407,7 @@ class RideComfort(DerivedOutput):
             raise CaseError(
                 "criteria.comfort_body", self.body, f"a body with bounce and pitch: {bodies}"
             )
-        frf = ds["frf_displacement"]
-        h = frf.transpose(..., "frequency", "response")
+        h = ds["frf_displacement"].transpose(..., "frequency", "response")
         psd = floor_acceleration_psd(
             f,
             h.sel(response=bounce).values,
@@ -367,67 +416,24 @@ class RideComfort(DerivedOutput):
             self.floor_positions_m,
         )
         axis = psd.ndim - 2
-        weighting = WEIGHTINGS[self.weighting]
-        a_w = weighted_rms(f, psd, weighting.magnitude(f), band, axis=axis)
+        a_w = weighted_rms(f, psd, WEIGHTINGS[self.weighting].magnitude(f), band, axis=axis)
         a_wb = weighted_rms(f, psd, WEIGHTINGS["Wb"].magnitude(f), band, axis=axis)
         a_s = weighted_rms(f, psd, sperling_weighting(f), band, axis=axis)
-        n_mv = 6.0 * a_wb
-        lead = tuple(d for d in h.dims if d not in ("frequency", "response"))
-        floor = {"floor": ("floor", np.asarray(self.floor_positions_m, dtype=float), {
-            "units": "m", "long_name": f"floor point of the {self.body}, from its centre, forward"
-        })}  # fmt: skip
-        text = f"{band[0]:g}-{band[1]:g} Hz"
-        out = {
-            "psd_floor_acceleration": xr.DataArray(
-                psd,
-                dims=(*lead, "frequency", "floor"),
-                coords=floor,
-                attrs={
-                    "units": "(m/s^2)^2/Hz",
-                    "long_name": f"vertical acceleration PSD of the {self.body} floor",
-                },
-            ),
-            "comfort_aw": xr.DataArray(
-                a_w,
-                dims=(*lead, "floor"),
-                coords=floor,
-                attrs={
-                    "units": "m/s^2",
-                    "long_name": f"frequency-weighted RMS acceleration a_w ({self.weighting}), "
-                    f"{text}",
-                    "standard": weighting.source + "; ISO 2631-1:1997, 6.4.2",
-                },
-            ),
-            "mean_comfort_index": xr.DataArray(
-                n_mv,
-                dims=(*lead, "floor"),
-                coords=floor,
-                attrs={
-                    "units": "1",
-                    "long_name": f"mean comfort index N_MV ~ 6 a_zWb (vertical part), {text}",
-                    "standard": "EN 12299:2009, 6.2 (simplified method); the 95th percentile "
-                    "of 5-s RMS values replaced by the RMS of the stationary response",
-                },
-            ),
-            "sperling_wz": xr.DataArray(
-                sperling_index(a_s),
-                dims=(*lead, "floor"),
-                coords=floor,
-                attrs={
-                    "units": "1",
-                    "long_name": f"Sperling ride index Wz = (100 sqrt(2) a_B)^0.3, {text}",
-                    "standard": "Sperling (1941); filter B(f) of Garg and Dukkipati (1984)",
-                },
-            ),
+        lead = tuple(str(d) for d in h.dims if d not in ("frequency", "response"))
+        floor = self.floor_coordinate()
+        attrs = self.variable_attrs(band)
+        values = {
+            "psd_floor_acceleration": (psd, (*lead, "frequency", "floor")),
+            "comfort_aw": (a_w, (*lead, "floor")),
+            "mean_comfort_index": (6.0 * a_wb, (*lead, "floor")),
+            "sperling_wz": (sperling_index(a_s), (*lead, "floor")),
         }
         if not lead:
-            out["comfort_category"] = xr.DataArray(
-                [comfort_category(float(a)) for a in a_w],
-                dims=("floor",),
-                coords=floor,
-                attrs={
-                    "units": "1",
-                    "long_name": "comfort category, ISO 2631-1:1997, Annex C, C.2.3",
-                },
+            values["comfort_category"] = (
+                np.array([comfort_category(float(a)) for a in a_w]),
+                ("floor",),
             )
-        return out
+        return {
+            name: xr.DataArray(v, dims=dims, coords=floor, attrs=attrs[name])
+            for name, (v, dims) in values.items()
+        }

@@ -26,6 +26,35 @@ __all__ = ["WheelRailForces"]
 class WheelRailForces(DerivedOutput):
     """The 3-sigma dynamic load and the dynamic load factor of each wheel and of the car."""
 
+    def variable_attrs(self, f_lo: float, f_hi: float) -> dict[str, dict[str, str]]:
+        """``units`` and ``long_name`` of each variable :meth:`compute` returns.
+
+        Parameters
+        ----------
+        f_lo, f_hi : float
+            The band of the force RMS, Hz (the ends of the frequency grid).
+
+        Returns
+        -------
+        dict of dict
+            By variable name.
+        """
+        band = f"{f_lo:g}-{f_hi:g} Hz"
+        return {
+            "dynamic_load_3sigma": {
+                "units": "N",
+                "long_name": f"3-sigma dynamic contact load, {band}",
+            },
+            "dynamic_load_factor": {
+                "units": "1",
+                "long_name": f"dynamic load factor 1 + 3 sigma / P0, {band}",
+            },
+            "car_dynamic_load_factor": {
+                "units": "1",
+                "long_name": f"dynamic load factor of the car (worst wheel), {band}",
+            },
+        }
+
     def compute(self, ds: xr.Dataset) -> dict[str, xr.DataArray]:
         """``dynamic_load_3sigma`` (N) and ``dynamic_load_factor`` per wheel; the car's worst.
 
@@ -39,18 +68,12 @@ class WheelRailForces(DerivedOutput):
             np.sqrt(trapezoid(psd.values, f, axis=psd.get_axis_num("frequency"))), dims=dims
         )
         p0 = ds["static_contact_load"].broadcast_like(sigma)
-        band = f"{f[0]:g}-{f[-1]:g} Hz"
-        three = (3.0 * sigma).assign_attrs(
-            units="N", long_name=f"3-sigma dynamic contact load, {band}"
-        )
-        factor = (1.0 + 3.0 * sigma / p0).assign_attrs(
-            units="1", long_name=f"dynamic load factor 1 + 3 sigma / P0, {band}"
-        )
-        worst = factor.max("wheel").assign_attrs(
-            units="1", long_name="dynamic load factor of the car (worst wheel)"
-        )
+        attrs = self.variable_attrs(float(f[0]), float(f[-1]))
+        factor = 1.0 + 3.0 * sigma / p0
         return {
-            "dynamic_load_3sigma": three,
-            "dynamic_load_factor": factor,
-            "car_dynamic_load_factor": worst,
+            "dynamic_load_3sigma": (3.0 * sigma).assign_attrs(attrs["dynamic_load_3sigma"]),
+            "dynamic_load_factor": factor.assign_attrs(attrs["dynamic_load_factor"]),
+            "car_dynamic_load_factor": factor.max("wheel").assign_attrs(
+                attrs["car_dynamic_load_factor"]
+            ),
         }

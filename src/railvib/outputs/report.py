@@ -31,7 +31,7 @@ def criteria_table(ds: xr.Dataset) -> pd.DataFrame:
     """
     rows: list[dict[str, object]] = []
     if "comfort_aw" in ds:
-        weighting = ds["comfort_aw"].attrs["long_name"].split("(")[1].split(")")[0]
+        weighting = ds["comfort_aw"].attrs["weighting"]
         for k, s in enumerate(ds["floor"].values):
             where = _floor_label(float(s))
             a_w = float(ds["comfort_aw"].values[k])
@@ -124,7 +124,7 @@ def criteria_lines(ds: xr.Dataset) -> list[str]:
     """
     lines = []
     if "comfort_aw" in ds:
-        band = ds["comfort_aw"].attrs["long_name"].rsplit(", ", 1)[1]
+        band = ds["comfort_aw"].attrs["band"]
         parts = []
         for k, s in enumerate(ds["floor"].values):
             a_w = float(ds["comfort_aw"].values[k])
@@ -134,7 +134,7 @@ def criteria_lines(ds: xr.Dataset) -> list[str]:
                 f"({ds['comfort_category'].values[k]}), N_MV {n_mv:.3g} "
                 f"({mean_comfort_category(n_mv)}), Wz {float(ds['sperling_wz'].values[k]):.3g}"
             )
-        weighting = ds["comfort_aw"].attrs["long_name"].split("(")[1].split(")")[0]
+        weighting = ds["comfort_aw"].attrs["weighting"]
         lines.append(f"ride comfort ({weighting}, {band}): " + "; ".join(parts))
     elif "frf_displacement" in ds:
         lines.append("ride comfort: not computed (the grid does not reach 0.5-80 Hz)")

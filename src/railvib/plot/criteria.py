@@ -56,7 +56,7 @@ def comfort_panel(ds: xr.Dataset, axes: tuple[Axes, Axes]) -> None:
     """
     left, right = axes
     f = ds["frequency"].values
-    weighting = ds["comfort_aw"].attrs["long_name"].split("(")[1].split(")")[0]
+    weighting = ds["comfort_aw"].attrs["weighting"]
     w2 = WEIGHTINGS[weighting].magnitude(f) ** 2
     floors = ds["floor"].values
     for k, s in enumerate(floors):
