@@ -102,3 +102,44 @@ def test_grid_above_the_comfort_range_says_comfort_is_not_computed(tmp_path, cap
     assert (
         "ride comfort: not computed (the grid does not reach 0.5-80 Hz)" in capsys.readouterr().out
     )
+
+
+SWEEP = """title = "comfort vs speed"
+variables = []
+[case]
+preset = "wang2017_metro"
+[case.frequency]
+spacing = "linear"
+f_min = 0.5
+f_max = 100.0
+step = 0.5
+[[axes]]
+field = "speed_kmh"
+values = [60.0, 100.0]
+"""
+
+
+@pytest.mark.slow
+def test_sweep_stores_the_criteria_of_each_case_as_a_run_computes_them(tmp_path):
+
+    import railvib
+    from railvib.sweep import load_sweep, run_sweep
+
+    (tmp_path / "sweep.toml").write_text(SWEEP, encoding="utf-8")
+    ds = run_sweep(load_sweep(tmp_path / "sweep.toml"), tmp_path / "out", workers=1, progress=False)
+    assert ds is not None
+    ds = ds.load()
+    for speed in (60.0, 100.0):
+        case = railvib.case_from_dict(
+            {
+                "preset": "wang2017_metro",
+                "speed_kmh": speed,
+                "frequency": {"spacing": "linear", "f_min": 0.5, "f_max": 100.0, "step": 0.5},
+            }
+        )
+        run = railvib.run(case)
+        # the sweep's batched solver against the run's: the same responses to rounding
+        for name in ("comfort_aw", "sperling_wz", "mean_comfort_index", "dynamic_load_factor"):
+            got = ds[name].sel(speed_kmh=speed).values
+            assert got == pytest.approx(run[name].values, rel=1e-9), name
+    assert ds["comfort_aw"].attrs["units"] == "m/s^2"

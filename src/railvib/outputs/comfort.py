@@ -7,19 +7,19 @@ point at ``x`` by ``x phi``), so its one-sided PSD is
 irregularity ``H`` and the irregularity PSD ``S_r``.
 
 * ``a_w = sqrt(integral of W(f)^2 S_a(f) df)`` over the comfort band (ISO 2631-1:1997,
-  6.4.2, eq. 2, written for a PSD: the RMS of the weighted signal), with W the
+  clause 6, basic evaluation method, written for a PSD: the RMS of the weighted signal), with W the
   weighting of :mod:`railvib.outputs.weighting` (Wb by default, the weighting of
   ISO 2631-4 and EN 12299 for vertical vibration in rail vehicles).
 * Comfort category: ISO 2631-1:1997, Annex C, C.2.3 (its ranges overlap; every
   range holding a_w is named).
-* Mean comfort index ``N_MV ~ 6 a_zWb`` (EN 12299:2009, 6.2, simplified method, eq.
+* Mean comfort index ``N_MV ~ 6 a_zWb`` (EN 12299:2009, mean comfort, standard method,
   ``N_MV = 6 sqrt(a_XP95^2 + a_YP95^2 + a_ZP95^2)``). Approximated: the standard
   takes the 95th percentile of 5-s RMS values of measured time histories; here the
   response is stationary and Gaussian, and the percentile is replaced by the RMS
   over the band (the 5-s values scatter about it, so N_MV is underestimated by the
   spread of the 5-s RMS values: a few per cent for a band of several Hz); the
   lateral and longitudinal terms are absent from a pitch-plane model, so the index
-  is the vertical part only. Scale: EN 12299:2009, Table 5.
+  is the vertical part only. Scale: that of EN 12299:2009 for N_MV.
 * Sperling ride index, filter form: ``Wz = (100 sqrt(2) a_B)^0.3`` with
   ``a_B = sqrt(integral of B(f)^2 S_a(f) df)`` in m/s^2 (the classical
   ``Wz = (a^3 B^3)^0.1`` for a harmonic of amplitude a in cm/s^2, with a
@@ -66,7 +66,7 @@ ISO2631_COMFORT: tuple[tuple[float, float, str], ...] = (
     (2.0, np.inf, "extremely uncomfortable"),
 )
 
-#: EN 12299:2009, Table 5: the scale of the mean comfort index N_MV (upper bounds)
+#: EN 12299:2009: the scale of the mean comfort index N_MV (upper bounds)
 EN12299_SCALE: tuple[tuple[float, str], ...] = (
     (1.0, "very comfortable"),
     (2.0, "comfortable"),
@@ -226,7 +226,7 @@ def comfort_category(a_w: float) -> str:
 
 
 def mean_comfort_category(n_mv: float) -> str:
-    """The comfort of a mean comfort index `n_mv` (dimensionless), EN 12299:2009, Table 5.
+    """The comfort of a mean comfort index `n_mv` (dimensionless), on the scale of EN 12299:2009.
 
     Parameters
     ----------
@@ -372,12 +372,12 @@ class RideComfort(DerivedOutput):
                 "long_name": f"weighted RMS acceleration a_w ({self.weighting}), {text}",
                 "weighting": self.weighting,
                 "band": text,
-                "standard": WEIGHTINGS[self.weighting].source + "; ISO 2631-1:1997, 6.4.2",
+                "standard": WEIGHTINGS[self.weighting].source + "; ISO 2631-1:1997, clause 6",
             },
             "mean_comfort_index": {
                 "units": "1",
                 "long_name": f"mean comfort index N_MV ~ 6 a_zWb (vertical part), {text}",
-                "standard": "EN 12299:2009, 6.2 (simplified method); the 95th percentile "
+                "standard": "EN 12299:2009, mean comfort (standard method); the 95th percentile "
                 "of 5-s RMS values replaced by the RMS of the stationary response",
             },
             "sperling_wz": {

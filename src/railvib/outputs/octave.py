@@ -1,6 +1,6 @@
 """One-third-octave bands of IEC 61260-1:2014 and band levels of one-sided PSDs.
 
-Band set (IEC 61260-1:2014, clause 5.2 to 5.4, base-10 system): octave ratio
+Band set (IEC 61260-1:2014, clause 5, base-10 system): octave ratio
 ``G = 10^(3/10)``, reference frequency ``f_r = 1000`` Hz; for bandwidth
 designator ``b = 3`` (odd) the exact mid-band frequency of band ``x`` is
 ``f_m = f_r G^(x/b) = 1000 * 10^(x/10)`` Hz and its edges are

@@ -43,7 +43,7 @@ def criteria_table(ds: xr.Dataset) -> pd.DataFrame:
                     "value": a_w,
                     "unit": "m/s^2",
                     "category": str(ds["comfort_category"].values[k]),
-                    "standard": "ISO 2631-1:1997, 6.4.2 and Annex C",
+                    "standard": "ISO 2631-1:1997, clause 6 and Annex C",
                 },
                 {
                     "criterion": "N_MV (vertical, from PSD)",
@@ -51,7 +51,7 @@ def criteria_table(ds: xr.Dataset) -> pd.DataFrame:
                     "value": n_mv,
                     "unit": "1",
                     "category": mean_comfort_category(n_mv),
-                    "standard": "EN 12299:2009, 6.2 (approximated: docs/criteria.md)",
+                    "standard": "EN 12299:2009, mean comfort (approximated: docs/criteria.md)",
                 },
                 {
                     "criterion": "Sperling Wz",
@@ -173,8 +173,12 @@ def octave_table(ds: xr.Dataset) -> pd.DataFrame:
     force = ds["octave_level_force"].transpose("band", "wheel")
     table = {"exact [Hz]": ds["band"].values}
     acc_ref = REFERENCES["acceleration"][1]
+    units = ds["displacement_unit"].values if "displacement_unit" in ds.coords else None
     for k, label in enumerate(ds["response"].values):
-        table[f"{label} [{acc_ref}]"] = acc.values[:, k]
+        ref = (
+            acc_ref if units is None or units[k] == "m" else acc_ref.replace(" m/", f" {units[k]}/")
+        )
+        table[f"{label} [{ref}]"] = acc.values[:, k]
     for j, wheel in enumerate(ds["wheel"].values):
         table[f"wheel{int(wheel)} [{REFERENCES['force'][1]}]"] = force.values[:, j]
     return pd.DataFrame(table, index=pd.Index(ds["band_nominal"].values, name="nominal [Hz]"))

@@ -1,6 +1,6 @@
 """Frequency weightings of whole-body vibration: ISO 2631-1 Wk and Wd, ISO 2631-4 Wb, Sperling.
 
-ISO 2631-1:1997, Annex A (A.2, Table A.2) defines each weighting as the product
+ISO 2631-1:1997, Annex A defines each weighting as the product
 of analogue filters in ``p = i 2 pi f``:
 
 * band limiting, high pass ``H_h = p^2 / (p^2 + w1 p / Q1 + w1^2)`` and low pass
@@ -10,7 +10,7 @@ of analogue filters in ``p = i 2 pi f``:
   ``(f5/f6)^2`` at low frequency, 1 at high frequency);
 * gain ``K``: ``W = K |H_h H_l H_t H_s|``.
 
-Parameters (Hz): Wk (vertical, seated, ISO 2631-1 Table A.2) f1 0.4, f2 100,
+Parameters (Hz): Wk (vertical, seated, ISO 2631-1 Annex A) f1 0.4, f2 100,
 f3 = f4 12.5, Q4 0.63, f5 2.37, Q5 0.91, f6 3.35, Q6 0.91, K 1; Wd (horizontal)
 f1 0.4, f2 100, f3 = f4 2, Q4 0.63, no step, K 1; Wb (vertical, rail vehicles,
 ISO 2631-4:2001 Annex A and EN 12299:2009 Annex A; BS 6841:1987) f1 0.4, f2 100,
@@ -97,11 +97,11 @@ WEIGHTINGS: dict[str, Weighting] = {
     for w in (
         Weighting(
             "Wk", 0.4, 100.0, 12.5, 12.5, 0.63, 2.37, 0.91, 3.35, 0.91, 1.0,
-            "ISO 2631-1:1997, Annex A, Table A.2 (vertical, seated)",
+            "ISO 2631-1:1997, Annex A (vertical, seated)",
         ),
         Weighting(
             "Wd", 0.4, 100.0, 2.0, 2.0, 0.63, None, 0.0, None, 0.0, 1.0,
-            "ISO 2631-1:1997, Annex A, Table A.2 (horizontal)",
+            "ISO 2631-1:1997, Annex A (horizontal)",
         ),
         Weighting(
             "Wb", 0.4, 100.0, 16.0, 16.0, 0.55, 2.5, 0.9, 4.0, 0.95, 1.024,

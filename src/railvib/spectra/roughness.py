@@ -54,7 +54,7 @@ __all__ = [
     "psd_to_level",
 ]
 
-#: reference roughness of the levels, m (1 um; EN 15610:2009, 3.3)
+#: reference roughness of the levels, m (1 um, as EN 15610:2009 reports levels)
 ROUGHNESS_REFERENCE_M = 1e-6
 
 #: ISO 3095:2013, Figure 2: (nominal wavelength, m; limit level, dB re 1 um), as printed
