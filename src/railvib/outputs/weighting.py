@@ -14,7 +14,9 @@ Parameters (Hz): Wk (vertical, seated, ISO 2631-1 Annex A) f1 0.4, f2 100,
 f3 = f4 12.5, Q4 0.63, f5 2.37, Q5 0.91, f6 3.35, Q6 0.91, K 1; Wd (horizontal)
 f1 0.4, f2 100, f3 = f4 2, Q4 0.63, no step, K 1; Wb (vertical, rail vehicles,
 ISO 2631-4:2001 Annex A and EN 12299:2009 Annex A; BS 6841:1987) f1 0.4, f2 100,
-f3 = f4 16, Q4 0.55, f5 2.5, Q5 0.9, f6 4, Q6 0.95, K 1.024.
+f3 = f4 16, Q4 0.55, f5 2.5, Q5 0.9, f6 4, Q6 0.95, K 1.024. ISO 8041 (human response
+to vibration, measuring instrumentation) tabulates the same parameters of all
+three, with ``Q1 = Q2 = 1/sqrt(2)`` exactly (ISO 2631-4 rounds Q1 to 0.71).
 
 The Sperling ride index uses the weighting of Sperling (1941) as given by Garg and
 Dukkipati, *Dynamics of Railway Vehicle Systems* (1984), section 12.3, for vertical

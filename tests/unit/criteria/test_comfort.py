@@ -169,3 +169,22 @@ def test_floor_geometry_comes_from_the_vehicle():
     geometry = floor_geometry(build_system(case).vehicle)
     assert geometry.positions == pytest.approx((lc, 0.0, -lc), abs=1e-12)  # over the bogies
     assert geometry.extent == pytest.approx((-lc - lt, lc + lt), abs=1e-12)  # the wheelbase
+
+
+#: ISO 8041, the table of the parameters of the frequency weightings, as printed (Hz; the
+#: band-limiting Q1 = Q2 = 1/sqrt(2) in every row): f1, f2, f3, f4, Q4, f5, Q5, f6, Q6, K
+ISO8041_PARAMETERS = {
+    "Wb": (0.4, 100, 16, 16, 0.55, 2.5, 0.9, 4, 0.95, 1.024),
+    "Wd": (0.4, 100, 2, 2, 0.63, None, None, None, None, 1),  # no upward step (infinite)
+    "Wk": (0.4, 100, 12.5, 12.5, 0.63, 2.37, 0.91, 3.35, 0.91, 1),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ISO8041_PARAMETERS))
+def test_weighting_parameters_are_those_of_iso_8041(name):
+    w = WEIGHTINGS[name]
+    f1, f2, f3, f4, q4, f5, q5, f6, q6, k = ISO8041_PARAMETERS[name]
+    assert (w.f1, w.f2, w.f3, w.f4, w.q4, w.gain) == (f1, f2, f3, f4, q4, k)
+    assert (w.f5, w.f6) == (f5, f6)
+    if f5 is not None:
+        assert (w.q5, w.q6) == (q5, q6)
