@@ -95,6 +95,7 @@ def test_criteria_files_and_figures(run_folder):
     assert (run_folder / "comfort.png").stat().st_size > 1000
 
 
+@pytest.mark.slow
 def test_grid_above_the_comfort_range_says_comfort_is_not_computed(tmp_path, capsys):
     case = CASE.replace("f_min = 0.5", "f_min = 100.0").replace("step = 0.5", "step = 50.0")
     (tmp_path / "case.toml").write_text(case, encoding="utf-8")
