@@ -5,6 +5,7 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -12,20 +13,29 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from railvib.case import Case, build_grid, build_spectrum, build_system, case_header, load_case
+from railvib.case.schema import CriteriaSection
 from railvib.coupling import CoupledSystem
-from railvib.errors import RailvibDeprecationWarning
+from railvib.errors import CaseError, RailvibDeprecationWarning
 from railvib.grid import FrequencyGrid
 from railvib.io import railvib_version, staged_folder, write_text
 from railvib.outputs import (
     DEFAULT_OUTPUTS,
     LOSS_OF_CONTACT_NOTE,
     ContactCheck,
+    RideComfort,
+    ThirdOctave,
     contact_line,
     contact_table,
+    criteria_lines,
+    criteria_table,
     derive,
+    floor_geometry,
     is_linear_model_valid,
     linearity_note,
+    octave_table,
+    third_octave_bands,
 )
+from railvib.outputs.weighting import COMFORT_RANGE_HZ
 from railvib.plot import OVERVIEW_STEMS
 from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
 from railvib.results.report import summary_csv, summary_markdown, summary_text
@@ -34,6 +44,9 @@ from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
     "LOSS_OF_CONTACT_NOTE",
+    "criteria_settings",
+    "CRITERIA_FILES",
+    "CRITERIA_STEMS",
     "PSD_CSV",
     "RUN_FILES",
     "RunOutput",
@@ -58,6 +71,7 @@ def run_system(
     attrs: dict[str, str] | None = None,
     *,
     loss_of_contact_threshold: float = LOSS_OF_CONTACT_NOTE,
+    criteria: dict[str, dict[str, Any]] | None = None,
 ) -> xr.Dataset:
     """Response PSDs and FRFs of a coupled system under a stationary irregularity.
 
@@ -74,6 +88,9 @@ def run_system(
     loss_of_contact_threshold : float
         Largest probability of loss of contact (dimensionless) for which the result is
         flagged ``linear_model_valid`` (:class:`railvib.outputs.ContactCheck`).
+    criteria : dict, optional
+        Derived outputs to add after the contact check, name -> settings
+        (:func:`criteria_settings`); none by default.
 
     Returns
     -------
@@ -118,7 +135,71 @@ def run_system(
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         ds = build_dataset_blocks(f, system.frf_blocks(f), s_r, attrs=meta, extra=extra)
     check_finite(ds)  # before the derived outputs, which assume finite PSDs
-    return derive(ds, DEFAULT_OUTPUTS, settings)
+    ds = derive(ds, DEFAULT_OUTPUTS, settings)
+    return derive(ds, list(criteria or {}), criteria) if criteria else ds
+
+
+def _overlap(band: tuple[float, float], f: NDArray[np.float64]) -> tuple[float, float] | None:
+    """`band` clipped to the grid `f` (Hz), or None where they do not overlap."""
+    lo, hi = max(band[0], float(f[0])), min(band[1], float(f[-1]))
+    return (lo, hi) if lo < hi else None
+
+
+def criteria_settings(
+    case: Case, system: CoupledSystem, f: NDArray[np.float64]
+) -> dict[str, dict[str, Any]]:
+    """The engineering criteria of a run and their settings, validated before anything is solved.
+
+    Ride comfort is computed at the floor points of ``[criteria]`` (default: over the
+    bogies and at the centre, :func:`railvib.outputs.floor_geometry`) over
+    ``comfort_band_hz`` (default: 0.5-80 Hz where the grid reaches, none where it does
+    not); the one-third-octave bands over ``octave_band_hz`` (default: the bands
+    the grid holds); the wheel-rail force criteria always.
+
+    Parameters
+    ----------
+    case : Case
+        The case (its ``[criteria]`` section, if any).
+    system : CoupledSystem
+        Its system (the vehicle's geometry).
+    f : numpy.ndarray
+        The frequency grid, Hz.
+
+    Returns
+    -------
+    dict
+        Output name -> settings, for :func:`railvib.outputs.derive`.
+
+    Raises
+    ------
+    railvib.errors.CaseError
+        A ``criteria.<key>`` that does not apply: a body without pitch (a rail
+        response), a floor point outside the car body, a band outside the grid or
+        outside the range where the weighting is defined.
+    """
+    c = case.criteria or CriteriaSection.model_validate({})
+    out: dict[str, dict[str, Any]] = {"wheel_rail_forces": {}}
+    octave = ThirdOctave(*(c.octave_band_hz or (0.0, 0.0)))
+    if c.octave_band_hz is not None or third_octave_bands(f[0], f[-1]).index.size:
+        octave.bands(f)  # refuses a range beyond the grid or holding no band
+        out["third_octave"] = {"f_lo": octave.f_lo, "f_hi": octave.f_hi}
+    bodies = [b.name for b in system.vehicle.bodies if b.pitch_inertia is not None]
+    if c.comfort_body not in bodies:
+        raise CaseError("criteria.comfort_body", c.comfort_body, f"a body with pitch: {bodies}")
+    band = c.comfort_band_hz or _overlap(COMFORT_RANGE_HZ, f)
+    if band is None:
+        return out
+    geometry = floor_geometry(system.vehicle, c.comfort_body)
+    settings: dict[str, Any] = {
+        "floor_positions_m": tuple(c.floor_positions_m or geometry.positions),
+        "floor_extent_m": geometry.extent,
+        "weighting": c.comfort_weighting,
+        "band_hz": tuple(band),
+        "body": c.comfort_body,
+    }
+    RideComfort(**settings).band(f)  # validates the settings and the band against the grid
+    out["ride_comfort"] = settings
+    return out
 
 
 def contact_check(
@@ -184,7 +265,8 @@ def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
     Returns
     -------
     xarray.Dataset
-        Response PSDs and FRFs on the case's grid (see :func:`run_system`).
+        Response PSDs and FRFs on the case's grid (see :func:`run_system`), with the
+        engineering criteria of :func:`criteria_settings`.
 
     Examples
     --------
@@ -195,12 +277,15 @@ def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
     """
     if not isinstance(case, Case):
         case = load_case(case, force=force)
+    system, grid = build_system(case), build_grid(case)
+    criteria = criteria_settings(case, system, grid.f)  # refuses bad settings before solving
     return run_system(
-        build_system(case),
-        build_grid(case),
+        system,
+        grid,
         build_spectrum(case),
         attrs={"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
         loss_of_contact_threshold=case.output.loss_of_contact_threshold,
+        criteria=criteria,
     )
 
 
@@ -223,6 +308,8 @@ class RunOutput:
         The case lines heading every summary (:func:`railvib.case.case_header`).
     contact : str
         The contact-check line (:func:`railvib.outputs.contact_line`).
+    criteria : tuple of str
+        The criteria lines (:func:`railvib.outputs.criteria_lines`).
     """
 
     dataset: xr.Dataset
@@ -231,6 +318,7 @@ class RunOutput:
     notes: tuple[str, ...]
     header: tuple[str, ...] = ()
     contact: str = ""
+    criteria: tuple[str, ...] = ()
 
     @property
     def linear_model_valid(self) -> bool:
@@ -240,11 +328,17 @@ class RunOutput:
     def text(self) -> str:
         """The summary as ``railvib run`` prints it: the case, the table, the contact check."""
         footer = [self.contact] if self.contact else []
-        return summary_text(self.summary, self.header, [*footer, *self.notes])
+        return summary_text(self.summary, self.header, [*footer, *self.criteria, *self.notes])
 
 
 #: the PSD tables ``railvib run`` writes beside the dataset (file stem = variable)
 PSD_CSV = ("psd_acceleration", "psd_displacement", "psd_force")
+
+#: the criteria tables ``railvib run`` writes (docs/criteria.md)
+CRITERIA_FILES = ("criteria.csv", "third_octave.csv")
+
+#: the criteria figures ``railvib run`` draws (:mod:`railvib.plot.criteria`)
+CRITERIA_STEMS = ("third_octave", "comfort")
 
 #: every file ``railvib run`` may write to its folder (a later run replaces them all)
 RUN_FILES = (
@@ -253,6 +347,8 @@ RUN_FILES = (
     "summary.csv",
     "summary.md",
     *(f"{stem}.png" for stem in OVERVIEW_STEMS),
+    *CRITERIA_FILES,
+    *(f"{stem}.png" for stem in CRITERIA_STEMS),
 )
 
 
@@ -263,8 +359,10 @@ def run_to_folder(
 
     Writes ``results.nc``, ``psd_acceleration.csv``, ``psd_displacement.csv``,
     ``psd_force.csv``, ``summary.csv`` and ``summary.md`` (each headed by the case:
-    :func:`railvib.case.case_header`, and the contact check) and, with `plots`, the
-    overview figures (:func:`railvib.plot.psd.save_overview`). The files are written
+    :func:`railvib.case.case_header`, the contact check and the criteria lines),
+    ``criteria.csv`` and ``third_octave.csv`` (docs/criteria.md) and, with `plots`, the
+    overview figures (:func:`railvib.plot.psd.save_overview`) and the criteria figures
+    (:func:`railvib.plot.criteria.save_criteria_plots`). The files are written
     into a staging folder put in place at the end (:func:`railvib.io.staged_folder`):
     `outdir` then holds this run's complete set, an earlier run's files of
     :data:`RUN_FILES` are replaced or removed (other files are kept), and a run that
@@ -303,21 +401,29 @@ def run_to_folder(
         table = summary_table(summary(ds, bands=case.output.rms_bands))
         header = case_header(case)
         contact = contact_line(ds)
-        contacts = [("Contact check per wheel", contact_table(ds))]
+        footer = [contact, *criteria_lines(ds)]
+        criteria = criteria_table(ds)
+        extra = [("Contact check per wheel", contact_table(ds)), ("Criteria", criteria)]
         files = [
             save_netcdf(ds, stage.path / "results.nc"),
             *(save_csv(ds, stage.path / f"{name}.csv", variable=name) for name in PSD_CSV),
-            write_text(stage.path / "summary.csv", summary_csv(table, header, [contact])),
+            write_text(stage.path / "summary.csv", summary_csv(table, header, footer)),
             write_text(
                 stage.path / "summary.md",
-                summary_markdown(table, header, [contact], title=case.title, extra=contacts),
+                summary_markdown(table, header, footer, title=case.title, extra=extra),
             ),
+            write_text(stage.path / "criteria.csv", criteria.to_csv(index=False)),
         ]
+        if "octave_level_acceleration" in ds:
+            octaves = octave_table(ds).to_csv(float_format="%.2f")
+            files.append(write_text(stage.path / "third_octave.csv", octaves))
         if plots:
-            from railvib.plot.psd import save_overview  # matplotlib: only when plotting
+            from railvib.plot.criteria import save_criteria_plots  # matplotlib: when plotting
+            from railvib.plot.psd import save_overview
 
             files += save_overview(ds, stage.path)
+            files += save_criteria_plots(ds, stage.path)
     files = stage.finals(files)
     note = linearity_note(ds)
     notes = () if note is None else (note,)
-    return RunOutput(ds, table, tuple(files), notes, tuple(header), contact)
+    return RunOutput(ds, table, tuple(files), notes, tuple(header), contact, tuple(footer[1:]))

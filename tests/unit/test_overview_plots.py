@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 import railvib
+import railvib.plot.criteria as criteria_plot
 import railvib.plot.psd as psd_plot
 from railvib.plot.psd import OVERVIEW_GROUPS, overview_figures, psd_ylim
-from railvib.solve import run_to_folder
+from railvib.solve import CRITERIA_STEMS, run_to_folder
 
 STEMS = [stem for stem, _, _ in OVERVIEW_GROUPS] + [
     "psd_force",
@@ -103,11 +104,13 @@ def test_run_to_folder_writes_every_png_through_save_figure(tmp_path, monkeypatc
         return real(fig, path, **kw)
 
     monkeypatch.setattr(psd_plot, "save_figure", spy)
+    monkeypatch.setattr(criteria_plot, "save_figure", spy)
     case = railvib.case_from_dict(
         {"preset": "wang2017_metro", "frequency": {"f_min": 1.0, "f_max": 200.0, "step": 2.0}}
     )
     out = run_to_folder(case, tmp_path)
     pngs = sorted(p.name for p in tmp_path.glob("*.png"))
-    assert pngs == sorted(f"{stem}.png" for stem in STEMS)
+    # the overview figures and the criteria figures (one-third octaves, comfort: issue 16)
+    assert pngs == sorted(f"{stem}.png" for stem in [*STEMS, *CRITERIA_STEMS])
     assert sorted(saved) == pngs
     assert {p.name for p in out.files} >= set(pngs) | {"psd_force.csv"}

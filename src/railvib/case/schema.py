@@ -26,6 +26,7 @@ __all__ = [
     "FAMILY_TABLES",
     "Case",
     "ContactSection",
+    "CriteriaSection",
     "FrequencySection",
     "OutputSection",
     "RailSection",
@@ -286,6 +287,37 @@ class OutputSection(Section):
         return self
 
 
+class CriteriaSection(Section):
+    """Settings of the engineering criteria (docs/criteria.md); every key is optional."""
+
+    floor_positions_m: list[float] | None = Field(
+        None,
+        max_length=20,
+        description="floor points of the car body for ride comfort, m from its centre, "
+        "positive forward (default: over the bogies and at the centre)",
+        json_schema_extra={"unit": "m"},
+    )
+    comfort_body: str = Field(
+        "carbody", description="the body whose floor is evaluated (a body with bounce and pitch)"
+    )
+    comfort_weighting: Literal["Wb", "Wk"] = Field(
+        "Wb",
+        description="frequency weighting of a_w: Wb (ISO 2631-4, EN 12299: rail vehicles) "
+        "or Wk (ISO 2631-1)",
+    )
+    comfort_band_hz: tuple[float, float] | None = Field(
+        None,
+        description="band of a_w, N_MV and Wz within 0.5-80 Hz (default: 0.5-80 Hz where the "
+        "grid reaches)",
+        json_schema_extra={"unit": "Hz"},
+    )
+    octave_band_hz: tuple[float, float] | None = Field(
+        None,
+        description="range of the one-third-octave bands (default: the whole grid)",
+        json_schema_extra={"unit": "Hz"},
+    )
+
+
 class Case(Section):
     """A complete railvib case: vehicle, track, contact, operation, irregularity, grid."""
 
@@ -311,6 +343,9 @@ class Case(Section):
     )
     frequency: FrequencySection
     output: OutputSection = Field(default_factory=OutputSection)
+    criteria: CriteriaSection | None = Field(
+        None, description="settings of the engineering criteria (docs/criteria.md)"
+    )
 
     @field_validator("title")
     @classmethod

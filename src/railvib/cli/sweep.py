@@ -140,7 +140,8 @@ def run_command(
     default=("peak", "dominant_frequency"),
     show_default=True,
     help="summary variable(s), repeated or comma-separated: peak, dominant_frequency, rms, "
-    "rms_<lo>_<hi>_hz (e.g. -v peak,rms_20_100_hz)",
+    "rms_<lo>_<hi>_hz (e.g. -v peak,rms_20_100_hz), or a criterion: comfort_aw, "
+    "mean_comfort_index, sperling_wz, dynamic_load_factor (docs/criteria.md)",
 )
 @click.option(
     "-r",

@@ -122,7 +122,9 @@ def plot_sweep(
         Summary variable: ``peak`` (PSD units), ``dominant_frequency`` (Hz),
         ``rms`` or ``rms_<lo>_<hi>_hz`` (m/s^2; rad/s^2 for a pitch response), or one of
         the contact check: ``contact_force_rms`` (N) and ``loss_of_contact_probability``
-        (drawn for the worst wheel), ``linear_model_valid``.
+        (drawn for the worst wheel), ``linear_model_valid``, or a criterion
+        (``comfort_aw``, ``mean_comfort_index``, ``sperling_wz``: the worst floor point;
+        ``dynamic_load_factor``: the worst wheel; ``car_dynamic_load_factor``).
     response : str or sequence of str
         Response label(s); a heat map takes one. Ignored by the contact-check variables.
     x, y : str, optional
@@ -148,9 +150,10 @@ def plot_sweep(
     da = ds[variable].isel(pick)
     per_response = "response" in da.dims
     if not per_response:
-        if "wheel" in da.dims:
-            da = da.max("wheel", keep_attrs=True)
-            da.attrs["long_name"] = f"{da.attrs.get('long_name', variable)}, worst wheel"
+        for extra in ("wheel", "floor"):  # a criterion per wheel or per floor point
+            if extra in da.dims:
+                da = da.max(extra, keep_attrs=True)
+                da.attrs["long_name"] = f"{da.attrs.get('long_name', variable)}, worst {extra}"
         da = da.astype(float).expand_dims(response=[variable]).assign_attrs(da.attrs)
         responses = [variable]
     invalid = _invalid(ds, pick) if variable != "linear_model_valid" else None

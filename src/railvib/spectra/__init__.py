@@ -6,6 +6,7 @@ from railvib.spectra.combined import Combined
 from railvib.spectra.factory import PAPER_SPECTRUM_DICT, spectrum_from_dict
 from railvib.spectra.fra import FRAClass
 from railvib.spectra.german import GermanVertical
+from railvib.spectra.roughness import ISO3095Limit, RoughnessLevels
 from railvib.spectra.sato import Sato
 from railvib.spectra.shitai import ShiTai
 from railvib.spectra.tabulated import Tabulated
@@ -17,6 +18,8 @@ __all__ = [
     "Combined",
     "FRAClass",
     "GermanVertical",
+    "ISO3095Limit",
+    "RoughnessLevels",
     "Sato",
     "ShiTai",
     "SpatialSpectrum",

@@ -24,13 +24,14 @@ from railvib.case.load import merge_case_dicts
 from railvib.coupling import CoupledSystem, coupled_response
 from railvib.grid import trapezoid
 from railvib.labels import response_labels
-from railvib.outputs import ContactCheck
+from railvib.outputs import ContactCheck, RideComfort, WheelRailForces
 from railvib.pads import PADS, PadModel
 from railvib.pads.scaled import ScaledPad
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
 from railvib.results.stats import summary_names
 from railvib.results.variables import compute_variables
+from railvib.solve import criteria_settings
 from railvib.sweep.layout import SweepLayout, is_cheap_field, is_pad_field
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.stacked import frf_pad_stack
@@ -39,10 +40,12 @@ from railvib.vehicle.assembly import WheelCondensation
 
 __all__ = [
     "CONTACT_SUMMARY",
+    "CRITERIA_SUMMARY",
     "BatchFRF",
     "case_labels",
     "compute_chunk",
     "contact_check",
+    "criteria_summary",
     "frf_many_speeds",
     "summary_names",
 ]
@@ -53,6 +56,17 @@ CONTACT_SUMMARY: dict[str, tuple[str, ...]] = {
     "contact_force_rms": ("wheel",),
     "loss_of_contact_probability": ("wheel",),
     "linear_model_valid": (),
+}
+
+#: summary variables of the engineering criteria each case of a sweep stores, with their
+#: dimension after the case (:class:`railvib.outputs.RideComfort` where the base case's
+#: grid reaches the comfort band, :class:`railvib.outputs.WheelRailForces`)
+CRITERIA_SUMMARY: dict[str, tuple[str, ...]] = {
+    "comfort_aw": ("floor",),
+    "mean_comfort_index": ("floor",),
+    "sperling_wz": ("floor",),
+    "dynamic_load_factor": ("wheel",),
+    "car_dynamic_load_factor": (),
 }
 
 
@@ -175,6 +189,7 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     check = contact_check(f, psd_force, loads, spec.loss_of_contact_threshold)
     for name in CONTACT_SUMMARY:
         out[f"summary/{name}"] = check[name].values
+    out.update(criteria_summary(spec, f, frf, s_r, psd_force, loads))
     target = np.asarray(values[spec.summary_variable], dtype=float)
     out.update(_summary(f, target, spec.rms_bands))
     return out
@@ -199,6 +214,66 @@ def _summary(
             raise ValueError(f"band {(lo, hi)} Hz holds no grid frequency")
         out[f"summary/{name}"] = np.sqrt(trapezoid(psd[:, inside], f[inside], axis=1))
     return out
+
+
+def criteria_summary(
+    spec: SweepSpec,
+    f: NDArray[np.float64],
+    frf: FRF,
+    irregularity_psd: NDArray[np.float64],
+    psd_force: NDArray[np.float64],
+    static_loads: NDArray[np.float64],
+) -> dict[str, NDArray[np.float64]]:
+    """The criteria of many cases (the run's derived outputs), as ``summary/<name>`` arrays.
+
+    The floor points and the comfort band are those of the base case
+    (:func:`railvib.solve.criteria_settings`): a sweep over the vehicle's geometry keeps
+    the base case's floor points.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The sweep.
+    f : numpy.ndarray
+        Frequencies, Hz, ``(n_freq,)``.
+    frf : FRF
+        Responses of the cases, ``(n_case, n_freq, ...)``, per metre of irregularity.
+    irregularity_psd : numpy.ndarray
+        One-sided irregularity PSDs, m^2/Hz, ``(n_case, n_freq)``.
+    psd_force : numpy.ndarray
+        Contact force PSDs, N^2/Hz, ``(n_case, n_freq, n_wheel)``.
+    static_loads : numpy.ndarray
+        Static wheel loads, N, ``(n_case, n_wheel)``.
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        :data:`CRITERIA_SUMMARY` variables, case first.
+    """
+    base = case_from_dict(spec.base_case_dict(), warn=False)
+    settings = criteria_settings(base, build_system(base), f)
+    forces = xr.Dataset(
+        {
+            "psd_force": (("case", "frequency", "wheel"), psd_force),
+            "static_contact_load": (("case", "wheel"), static_loads),
+        },
+        coords={"frequency": f},
+    )
+    values = WheelRailForces().compute(forces)
+    if "ride_comfort" in settings:
+        responses = xr.Dataset(
+            {
+                "frf_displacement": (("case", "frequency", "response"), frf.vehicle),
+                "irregularity_psd": (("case", "frequency"), irregularity_psd),
+            },
+            coords={"frequency": f, "response": list(frf.dofs)},
+        )
+        values.update(RideComfort(**settings["ride_comfort"]).compute(responses))
+    return {
+        f"summary/{name}": np.asarray(values[name].transpose("case", ...).values, dtype=float)
+        for name in CRITERIA_SUMMARY
+        if name in values
+    }
 
 
 def contact_check(

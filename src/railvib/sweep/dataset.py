@@ -13,12 +13,13 @@ from numpy.typing import NDArray
 from railvib.case import Case, build_grid, build_system, case_from_dict
 from railvib.errors import CaseError
 from railvib.io import atomic_path, railvib_version
-from railvib.outputs import ContactCheck, loss_of_contact_threshold
+from railvib.outputs import ContactCheck, RideComfort, WheelRailForces, loss_of_contact_threshold
 from railvib.results.dataset import PSD_CONVENTION, load_netcdf, save_netcdf
 from railvib.results.stats import summary_attrs, summary_names
 from railvib.results.units import QUANTITY_UNITS, summary_quantity, with_unit_coordinates
 from railvib.results.variables import VARIABLES
-from railvib.sweep.batch import CONTACT_SUMMARY, case_labels
+from railvib.solve import criteria_settings
+from railvib.sweep.batch import CONTACT_SUMMARY, CRITERIA_SUMMARY, case_labels
 from railvib.sweep.folder import CSV_NAME, MANIFEST, NETCDF_NAME, PLOTS_NAME, ZARR_NAME
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
@@ -137,6 +138,17 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
             continue
         da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, *extra))
         data[name] = da.transpose(*extra, *sweep_dims).assign_attrs(contact_attrs[name])
+    criteria = criteria_settings(base, system, f)
+    criteria_attrs = WheelRailForces().variable_attrs(float(f[0]), float(f[-1]))
+    if "ride_comfort" in criteria:
+        comfort = RideComfort(**criteria["ride_comfort"])
+        coords.update(comfort.floor_coordinate())
+        criteria_attrs.update(comfort.variable_attrs(comfort.band(f)))
+    for name, extra in CRITERIA_SUMMARY.items():
+        if f"summary/{name}" not in arrays:  # chunks of an older railvib, or no comfort
+            continue
+        da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, *extra))
+        data[name] = da.transpose(*extra, *sweep_dims).assign_attrs(criteria_attrs[name])
     quantities = {name: name for name in spec.variables if name in QUANTITY_UNITS}
     for name in summary_names(spec.rms_bands):
         quantity = summary_quantity(name, summarised)

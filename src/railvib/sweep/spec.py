@@ -45,7 +45,7 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
-from railvib.case import Case, build_pad, case_from_dict, merge_case_dicts
+from railvib.case import Case, build_pad, build_system, case_from_dict, merge_case_dicts
 from railvib.case.build import build_grid, build_vehicle
 from railvib.case.errors import case_error
 from railvib.case.plausibility import physical_memory_bytes
@@ -54,6 +54,7 @@ from railvib.errors import CaseError, RailvibDeprecationWarning, did_you_mean
 from railvib.io import check_nesting, read_toml
 from railvib.outputs import LOSS_OF_CONTACT_NOTE
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
+from railvib.solve import criteria_settings
 
 __all__ = [
     "MAX_AXIS_VALUES",
@@ -715,7 +716,14 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tupl
         )
     _check_groups(axes)
     _check_size(axes, spec, base, base_dir)
+    _check_criteria(base, base_dir)
     return tuple(axes)
+
+
+def _check_criteria(base: dict[str, Any], base_dir: Path) -> None:
+    """Refuse ``[criteria]`` settings of the base case that do not apply, before any case runs."""
+    case = case_from_dict(base, base_dir=base_dir, warn=False)
+    criteria_settings(case, build_system(case), build_grid(case).f)
 
 
 def _groups(spec: SweepFile) -> dict[str, int]:
