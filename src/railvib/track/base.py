@@ -97,9 +97,7 @@ class TrackModel(ABC):
             (largest ``|mu|`` first).
         """
 
-    def support_response(
-        self, f: ArrayLike, x_load: float, n_supports: int
-    ) -> SupportResponse:
+    def support_response(self, f: ArrayLike, x_load: float, n_supports: int) -> SupportResponse:
         """The layers below the rail seats nearest a unit load (displacements and forces).
 
         Parameters

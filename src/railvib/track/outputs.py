@@ -120,15 +120,13 @@ def frf(
     return np.asarray(alpha * ((2j * np.pi * f) ** power)[:, None, None], dtype=np.complex128)
 
 
-def wave_decay(
-    mu: ArrayLike, period: float
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+def wave_decay(mu: ArrayLike, period: float) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Decay in dB/m of each wave and whether it propagates.
 
     Parameters
     ----------
     mu : array_like
-        Propagation constants over one period, ``|mu| <= 1``, any shape.
+        Propagation constants over one period (dimensionless), ``|mu| <= 1``, any shape.
     period : float
         The period, m.
 
@@ -247,7 +245,7 @@ def decay_rate(ratio: ArrayLike, x: ArrayLike) -> NDArray[np.float64]:
     Parameters
     ----------
     ratio : array_like
-        ``|A(x_n)|^2 / |A(x_0)|^2``, ``(..., n_positions)``.
+        ``|A(x_n)|^2 / |A(x_0)|^2`` (dimensionless), ``(..., n_positions)``.
     x : array_like
         The positions, m (:func:`en15461_weights`).
 

@@ -691,7 +691,9 @@ class PeriodicTrack(TrackModel):
         f = _as_freq(f)
         d = self.sleeper_spacing
         nearest = int(_nearest_sleeper(np.array([x_load / d]))[0][0])
-        x = (nearest + np.arange(-int(n_supports), int(n_supports) + 1)) * d
+        x = np.asarray(
+            (nearest + np.arange(-int(n_supports), int(n_supports) + 1)) * d, dtype=np.float64
+        )
         rail = self.receptance(f, [x_load], x)[:, :, 0]
         return self.seat_response(f, x, rail)
 
