@@ -199,7 +199,8 @@ def test_pass_and_stop_bands_of_the_undamped_rail_meet_at_the_pinned_pinned_freq
     f_pp = (np.pi / D) ** 2 * np.sqrt(6.42e6 / 60.0) / (2 * np.pi)
     mu = track.propagation_constants([0.97 * f_pp, 1.01 * f_pp])
     decay, propagates = wave_decay(mu, D)
-    assert propagates[0, 0] and not propagates[1, 0]
+    assert propagates[0, 0]
+    assert not propagates[1, 0]
     assert abs(abs(mu[0, 0]) - 1) < 1e-9  # the solver's vanishing rail loss, 1e-12
     assert abs(mu[1, 0].real + abs(mu[1, 0])) < 1e-9 * abs(mu[1, 0])  # negative real
     assert not propagates[:, 1].any()  # the second wave is evanescent (decays > 30 dB/m)
