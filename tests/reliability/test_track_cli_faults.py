@@ -32,7 +32,8 @@ CASES = {
     "--tdr-bands reversed": ("", ["--tdr-bands", "1000,100"], "--tdr-bands", "low <= high"),
     "--tdr-bands above the solver's range": (
         # a 4.9 t/m rail at 2.9 m is solved up to 1096 Hz: the 1 kHz band reaches 1122 Hz
-        "[track]\nsleeper_spacing = 2.9\n[track.rail]\nmass_per_length = 4900.0\n[frequency]\nf_max = 1050.0\n",
+        "[track]\nsleeper_spacing = 2.9\n[track.rail]\nmass_per_length = 4900.0\n"
+        "[frequency]\nf_max = 1050.0\n",
         ["--tdr-bands", "100,1000"],
         "--tdr-bands",
         "highest frequency this rail",
