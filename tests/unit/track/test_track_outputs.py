@@ -9,6 +9,7 @@ EN 15461 and IEC 61260-1.
 import numpy as np
 import pytest
 
+from railvib.case import build_track, load_preset_case
 from railvib.errors import CaseError
 from railvib.pads import Hysteretic
 from railvib.track import BallastedTrack, PeriodicTrack, Rail
@@ -294,3 +295,24 @@ def test_support_response_arguments_are_checked():
 def test_period_is_the_sleeper_spacing_for_the_sleeper_tracks():
     assert THOMPSON.period == D
     assert PeriodicTrack(UIC60, Hysteretic(3e8, 0.25), 0.65).period == 0.65
+
+
+def test_chn60_preset_is_the_table_of_its_source_per_rail_seat():
+    # MPE 2017 Table 1 converted by hand: EI = 210e9 x 3.217e-5, m = 7750 x 7.745e-3,
+    # kappa G A = 0.5329 x 80.8e9 x 7.745e-3, rho I = 7750 x 3.217e-5; pad 225 kN/mm,
+    # ballast 20 kN/mm, half sleeper 170 kg at 0.55 m (rail_pair: both rails' seats)
+    case = load_preset_case("chn60_ballasted")
+    track = build_track(case.model_copy(update={"rail_model": "single_rail"}))
+    assert isinstance(track, BallastedTrack)
+    rail = track.rail
+    np.testing.assert_allclose(
+        [rail.bending_stiffness, rail.mass_per_length, rail.shear_stiffness, rail.rotary_inertia],
+        [6.7557e6, 60.02375, 3.334867e8, 0.2493175],
+        rtol=1e-6,  # the preset writes kappa G A to 7 digits
+    )
+    assert (track.sleeper_spacing, track.sleeper_mass) == (0.55, 170.0)
+    k = track.layer_stiffness([100.0])
+    np.testing.assert_allclose(k["pad"], 2.25e8 * (1 + 0.25j))
+    np.testing.assert_allclose(k["ballast"], 2e7 * (1 + 1j))
+    both = build_track(case)
+    assert both.sleeper_mass == 340.0  # rail_pair
