@@ -1,5 +1,9 @@
 """``railvib track`` end to end, in process: the dataset, the decay-rate table, the plots."""
 
+import re
+import shlex
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -80,3 +84,31 @@ def test_track_help_lists_its_options(capsys):
     text = capsys.readouterr().out
     for option in ("--fmin", "--fmax", "-n", "--load", "--tdr-bands", "--supports", "-o"):
         assert option in text
+
+
+DOC = Path(__file__).resolve().parents[2] / "docs" / "track-outputs.md"
+
+
+def test_the_python_example_of_the_docs_runs(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    blocks = re.findall(r"```python\n(.*?)```", DOC.read_text(), flags=re.S)
+    assert blocks
+    for block in blocks:
+        exec(compile(block, str(DOC), "exec"), {})  # noqa: S102
+
+
+@pytest.mark.slow  # the documented command: 400 frequencies and three figures, ~5 s
+def test_the_documented_command_prints_the_documented_rates(tmp_path, monkeypatch, capsys):
+    root = DOC.parents[1]
+    line = re.findall(r"```bash\n(railvib track .*?)\n```", DOC.read_text(), flags=re.S)[0]
+    args = shlex.split(line)[1:]
+    args[1] = str(root / args[1])
+    monkeypatch.chdir(tmp_path)
+    assert main(args) == 0
+    printed = {s.split()[0]: s.split()[1:3] for s in capsys.readouterr().out.splitlines()[1:-1]}
+    # the table of the docs, "band | TDR | wave 1", as printed (3 significant digits)
+    rows = re.findall(r"^\| (TDR \(dB/m\)|wave 1 \(dB/m\)) \| (.*) \|$", DOC.read_text(), re.M)
+    bands = re.findall(r"^\| band \(Hz\) \| (.*) \|$", DOC.read_text(), re.M)[0].split(" | ")
+    for (name, values), column in zip(rows, (0, 1), strict=True):
+        for band, value in zip(bands, values.split(" | "), strict=True):
+            assert printed[band][column] == value.rstrip("*"), (name, band)
