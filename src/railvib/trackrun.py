@@ -300,6 +300,7 @@ def track_dataset(
             "load_position_m": float(x_load),
             "period_m": float(track.period),
             "sleeper_spacing_m": float(d),
+            "decay_rate_floor_db_per_m": 2.0 * decay.minimum_measurable,
             "decay_rate_method": (
                 "EN 15461:2008+A1:2010 clause 7 Formula 1 (Annex A), excitation grid of 6.7 / "
                 f"Figure 2 from x = {decay.x_response:g} m; "
@@ -337,6 +338,7 @@ def decay_rate_csv(ds: xr.Dataset, header: list[str] | None = None) -> str:
     """
     lines = [f"# {line}" for line in (header or [])]
     lines.append(f"# {ds.attrs['decay_rate_method']}")
+    lines.append(f"# suitable: rate >= 2 DR_min = {ds.attrs['decay_rate_floor_db_per_m']:.4g} dB/m")
     lines.append(
         "band_nominal_hz,band_centre_hz,decay_rate_db_per_m,least_attenuated_wave_db_per_m,suitable"
     )

@@ -89,6 +89,7 @@ def test_track_help_lists_its_options(capsys):
 DOC = Path(__file__).resolve().parents[2] / "docs" / "track-outputs.md"
 
 
+@pytest.mark.slow  # a Timoshenko rail's TDR over 11 bands: ~1-4 s
 def test_the_python_example_of_the_docs_runs(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     blocks = re.findall(r"```python\n(.*?)```", DOC.read_text(), flags=re.S)

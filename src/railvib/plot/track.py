@@ -72,7 +72,7 @@ def plot_decay_rate(ds: xr.Dataset, ax: Axes | None = None) -> Axes:
     ----------
     ds : xarray.Dataset
         A track dataset (``decay_rate``, ``wave_decay_band``, ``band_lower``,
-        ``band_upper``).
+        ``band_upper``, attribute ``decay_rate_floor_db_per_m``).
     ax : Axes, optional
         Axes to draw on; a new figure when None.
 
@@ -93,6 +93,8 @@ def plot_decay_rate(ds: xr.Dataset, ax: Axes | None = None) -> Axes:
     ):
         values = ds[name].values
         ax.stairs(values, edges, baseline=None, color=style[:2], ls=style[2:], lw=1.5, label=label)
+    floor = float(ds.attrs["decay_rate_floor_db_per_m"])
+    ax.axhline(floor, color="0.4", ls=":", lw=1.0, label="2 DR_min (EN 15461 clause 7)")
     log_axis(ax, "x")
     log_axis(ax, "y")
     ax.set_xlabel("frequency (Hz), one-third octave bands")
