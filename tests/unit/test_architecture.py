@@ -45,6 +45,7 @@ LAYERS = {
     "case": 6,
     "plot": 7,
     "solve": 8,
+    "trackrun": 8,
     "padfit": 9,
     "models": 9,
     "testing": 9,

@@ -118,6 +118,7 @@ def _register_optional() -> None:
         ("railvib.cli.validate", "validate"),
         ("railvib.cli.reproduce", "reproduce"),
         ("railvib.cli.sweep", "sweep"),
+        ("railvib.cli.track", "track"),
     ):
         try:
             mod = importlib.import_module(module)

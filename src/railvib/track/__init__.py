@@ -1,7 +1,7 @@
 """The rail as an infinite periodic structure (symplectic / wave method)."""
 
 from railvib.track.ballasted import BallastedTrack
-from railvib.track.base import DEFAULT_TRACK_MODEL, TRACKS, TrackModel
+from railvib.track.base import DEFAULT_TRACK_MODEL, TRACKS, SupportResponse, TrackModel
 from railvib.track.periodic import PeriodicTrack, Rail, TrackWaves
 
 __all__ = [
@@ -10,6 +10,7 @@ __all__ = [
     "BallastedTrack",
     "PeriodicTrack",
     "Rail",
+    "SupportResponse",
     "TrackModel",
     "TrackWaves",
 ]

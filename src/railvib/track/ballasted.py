@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_value
-from railvib.track.base import TRACKS
+from railvib.track.base import TRACKS, SupportResponse
 from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail
 
 __all__ = ["BALLASTED_PARAMETERS", "BallastedTrack", "ballasted_track", "series_support"]
@@ -229,6 +229,59 @@ class BallastedTrack(PeriodicTrack):
             assert self.ballast_mass is not None, "checked in __post_init__"
             below = series_support(below, k["subgrade"] - self.ballast_mass * omega2)
         return series_support(k["pad"], below - self.sleeper_mass * omega2)
+
+    def seat_response(
+        self, f: ArrayLike, x: NDArray[np.float64], rail: NDArray[np.complex128]
+    ) -> SupportResponse:
+        """The sleeper (and ballast mass) and the layer forces from the rail displacement.
+
+        The condensed sleeper equation ``(K_p + Z_b) w_s = K_p w_r`` gives the sleeper;
+        the pad carries ``K_p (w_r - w_s)``, the ballast ``K_b w_s`` to the ground, or,
+        with three layers, ``K_b (w_s - w_m)`` with ``(K_b + Z_g) w_m = K_b w_s`` and the
+        subgrade ``K_g w_m`` to the ground (the module docstring).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, ``(n_freq,)``.
+        x : numpy.ndarray
+            Seat positions, m, ``(n_supports,)``.
+        rail : numpy.ndarray
+            Rail displacement at the seats per unit force, m/N, ``(n_freq, n_supports)``.
+
+        Returns
+        -------
+        SupportResponse
+            Masses ``"rail"``, ``"sleeper"`` (``"ballast_mass"``); layers ``"pad"``,
+            ``"ballast"`` (``"subgrade"``).
+        """
+        f = np.asarray(f, dtype=float)
+        omega2 = ((2.0 * np.pi * f) ** 2)[:, None]
+        k = self.layer_stiffness(f)
+        kp, kb = k["pad"][:, None], k["ballast"][:, None]
+        below = kb
+        if self.three_layer:
+            assert self.ballast_mass is not None, "checked in __post_init__"
+            zg = k["subgrade"][:, None] - self.ballast_mass * omega2
+            below = series_support(kb, zg)
+        sleeper = kp * rail / (kp + below - self.sleeper_mass * omega2)
+        displacement = {"rail": rail, "sleeper": sleeper}
+        compression = {"pad": rail - sleeper, "ballast": sleeper}
+        foundation = "ballast"
+        if self.three_layer:
+            mass = kb * sleeper / (kb + zg)
+            displacement["ballast_mass"] = mass
+            compression.update(ballast=sleeper - mass, subgrade=mass)
+            foundation = "subgrade"
+        force = {name: k[name][:, None] * c for name, c in compression.items()}
+        return SupportResponse(
+            x=np.asarray(x, dtype=float),
+            displacement=displacement,
+            compression=compression,
+            force=force,
+            stiffness=k,
+            foundation=foundation,
+        )
 
 
 def ballasted_track(

@@ -29,7 +29,7 @@ from railvib.errors import CaseError, SolverWarning
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_parameters, check_value, parameter
 from railvib.stack import stacked
-from railvib.track.base import TRACKS, TrackModel
+from railvib.track.base import TRACKS, SupportResponse, TrackModel
 from railvib.track.beam import (
     dynamic_stiffness,
     field_transfer,
@@ -639,6 +639,94 @@ class PeriodicTrack(TrackModel):
         c[2, 3] = ei / d**3
         c[3, 2] = -ei / d**2
         return c, np.asarray(np.linalg.inv(c), dtype=np.complex128)
+
+    # -- the track alone (railvib.track.outputs) ------------------------------------------
+    @property
+    def period(self) -> float:
+        """Length of the periodic cell, m: one sleeper bay, the sleeper spacing d."""
+        return self.sleeper_spacing
+
+    @fill_doc(_SHARED)
+    def propagation_constants(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """Propagation constants ``mu = exp(-gamma d)`` of the two right-going waves per bay.
+
+        Parameters
+        ----------
+        {f}
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n_freq, 2)``, ``|mu| <= 1`` (:attr:`TrackWaves.mu`), each row sorted
+            least-attenuated first.
+        """
+        mu = self.waves(f).mu
+        order = np.argsort(-np.abs(mu), axis=1, kind="stable")
+        return np.asarray(np.take_along_axis(mu, order, axis=1), dtype=np.complex128)
+
+    @fill_doc(_SHARED)
+    def support_response(self, f: ArrayLike, x_load: float, n_supports: int) -> SupportResponse:
+        """The rail seats nearest a unit load: rail and layer displacements, layer forces.
+
+        The seats are the sleepers ``n d`` from ``n0 - n_supports`` to ``n0 + n_supports``,
+        ``n0`` the sleeper nearest `x_load`; the rail displacement there is
+        :meth:`receptance` and the layers follow from it (:meth:`seat_response`).
+
+        Parameters
+        ----------
+        {f}
+        x_load : float
+            Position of the unit load, m.
+        n_supports : int
+            Seats on each side of the nearest one (>= 0).
+
+        Returns
+        -------
+        SupportResponse
+        """
+        if not np.isfinite(x_load):
+            raise CaseError("x_load", x_load, "a finite position (m)")
+        if int(n_supports) != n_supports or n_supports < 0:
+            raise CaseError("n_supports", n_supports, "an integer >= 0")
+        f = _as_freq(f)
+        d = self.sleeper_spacing
+        nearest = int(_nearest_sleeper(np.array([x_load / d]))[0][0])
+        x = np.asarray(
+            (nearest + np.arange(-int(n_supports), int(n_supports) + 1)) * d, dtype=np.float64
+        )
+        rail = self.receptance(f, [x_load], x)[:, :, 0]
+        return self.seat_response(f, x, rail)
+
+    @fill_doc(_SHARED)
+    def seat_response(
+        self, f: ArrayLike, x: NDArray[np.float64], rail: NDArray[np.complex128]
+    ) -> SupportResponse:
+        """The layers of the rail seats at `x` from the rail displacement there.
+
+        Here the pad alone, on a rigid base: it is compressed by the rail's displacement
+        and carries ``K* w_r`` to the ground.
+
+        Parameters
+        ----------
+        {f}
+        x : numpy.ndarray
+            Seat positions, m, ``(n_supports,)``.
+        rail : numpy.ndarray
+            Rail displacement at the seats per unit force, m/N, ``(n_freq, n_supports)``.
+
+        Returns
+        -------
+        SupportResponse
+        """
+        k = self.support_stiffness(_as_freq(f))
+        return SupportResponse(
+            x=np.asarray(x, dtype=float),
+            displacement={"rail": rail},
+            compression={"pad": rail},
+            force={"pad": k[:, None] * rail},
+            stiffness={"pad": k},
+            foundation="pad",
+        )
 
 
 def _warn_if_ill_conditioned(f: NDArray[np.float64], estimate: NDArray[np.float64]) -> None:
