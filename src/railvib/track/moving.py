@@ -1,0 +1,386 @@
+"""The rail under a harmonic point load moving at constant speed along the periodic track.
+
+A load ``F exp(i Omega t)`` at ``x = v t`` on a rail on discrete supports at ``x = j d``
+gives, in steady state, a rail response that is periodic in the moving frame with the
+sleeper-passing period ``d / v``::
+
+    u(v t + r, t) = F exp(i Omega t) sum_n A_n(Omega, r) exp(i n Omega_s t),
+    Omega_s = 2 pi v / d,
+
+so harmonic ``n`` is heard at ``Omega + n Omega_s`` by an observer moving with the load
+(``r`` is the distance ahead of the load). The amplitudes follow from the wavenumber
+integral of the periodic track's travelling-wave response (Floquet coupling ``k -> k +
+2 pi n / d``), at the Doppler-shifted frequency ``omega = Omega - k v`` of the fixed
+frame::
+
+    A_n = (1 / 2 pi) int dk exp(i k_n r) G_n (delta_n0 - K w_0 / d),
+    k_n = k + 2 pi n / d,   G_n = 1 / (EI* k_n^4 - m omega^2),
+    w_0 = G_0 / (1 + K S / d),   S = sum_m G_m (closed form),
+
+with ``K = K(omega)`` the support the rail sees at each seat
+(:meth:`~railvib.track.periodic.PeriodicTrack.support_stiffness`: the pad on a rigid base, or
+the pad-sleeper-ballast chain of :class:`~railvib.track.ballasted.BallastedTrack`). The
+derivation, the quadrature and the checks are in ``docs/moving-load.md``. Time dependence
+``exp(+i omega t)``; displacements and forces positive downward.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.errors import CaseError
+from railvib.track.beam import krylov_series
+from railvib.track.periodic import VANISHING_LOSS_FACTOR, PeriodicTrack
+
+__all__ = [
+    "MAX_HARMONIC_ORDER",
+    "SPEED_FRACTION",
+    "MovingLoadResponse",
+    "critical_speed",
+    "moving_load_receptance",
+]
+
+#: the speed bound as a fraction of the track's critical speed (:func:`critical_speed`):
+#: trains run at under 0.3 of it on ballasted track; near it the response grows without
+#: the damping bound the quadrature grid is laid out for (a few decay lengths per bay)
+SPEED_FRACTION = 0.5
+
+#: most harmonics either side of the load frequency (each costs a few % of the run)
+MAX_HARMONIC_ORDER = 50
+
+#: Gauss-Legendre points per panel of the wavenumber quadrature
+_GAUSS_ORDER = 8
+
+#: panel widths and the half-width of the refined windows at the multiples of pi/d, in
+#: units of pi/d: the pinned-pinned waves (k = j pi / d) are the only weakly damped ones,
+#: their peaks in k are ~0.004 pi/d wide (Nordborg's track at v = 60 m/s); measured
+#: quadrature error at those panels < 1e-5 of |A_0| (docs/moving-load.md)
+_COARSE_PANEL = 1.0 / 20.0
+_FINE_PANEL = 1.0 / 100.0
+_FINE_WINDOW = 1.0 / 10.0
+
+#: the integral is carried to this multiple of the core half-width (geometric panels):
+#: the integrand falls as k^-4 there, so the tail left out is < 1e-8 of the result
+_TAIL_FACTOR = 40.0
+_TAIL_RATIO = 1.2
+
+#: largest (frequency x wavenumber) block evaluated at once, complex entries
+_CHUNK = 2_000_000
+
+
+@dataclass(frozen=True)
+class MovingLoadResponse:
+    """Harmonics of the rail response to a moving harmonic point load.
+
+    Attributes
+    ----------
+    f : numpy.ndarray
+        Load frequencies ``Omega / 2 pi``, Hz, ``(n_freq,)``.
+    speed : float
+        Load speed v, m/s.
+    sleeper_spacing : float
+        d, m.
+    r : numpy.ndarray
+        Distances of the observation points ahead of the load, m, ``(n_obs,)``.
+    orders : numpy.ndarray
+        Harmonic orders ``-N .. N``, ``(2 N + 1,)``.
+    amplitudes : numpy.ndarray
+        ``A_n(Omega, r)``, complex, m/N, ``(n_freq, n_obs, 2 N + 1)``.
+    """
+
+    f: NDArray[np.float64]
+    speed: float
+    sleeper_spacing: float
+    r: NDArray[np.float64]
+    orders: NDArray[np.int64]
+    amplitudes: NDArray[np.complex128]
+
+    @property
+    def sleeper_passing_frequency_hz(self) -> float:
+        """``v / d``, Hz."""
+        return self.speed / self.sleeper_spacing
+
+    @property
+    def response_frequencies_hz(self) -> NDArray[np.float64]:
+        """Frequency of each harmonic in the moving frame, ``f + n v / d``, Hz, ``(n_freq, 2N+1)``."""
+        return self.f[:, None] + self.orders[None, :] * self.sleeper_passing_frequency_hz
+
+    @property
+    def mean(self) -> NDArray[np.complex128]:
+        """``A_0``: the receptance at the load frequency, m/N, ``(n_freq, n_obs)``."""
+        return self.amplitudes[:, :, self.orders.size // 2]
+
+    @property
+    def tail(self) -> NDArray[np.float64]:
+        """``max(|A_N|, |A_-N|) / max_n |A_n|`` per frequency (dimensionless), ``(n_freq,)``.
+
+        The size of the outermost harmonics kept, relative to the largest: an estimate of
+        what the harmonics left out carry.
+        """
+        size = np.abs(self.amplitudes).max(axis=1)  # (n_freq, n_harm)
+        edge = np.maximum(size[:, 0], size[:, -1])
+        return np.asarray(edge / np.maximum(size.max(axis=1), np.finfo(float).tiny))
+
+
+def critical_speed(track: PeriodicTrack) -> float:
+    """Critical speed of the track, m/s: ``(4 EI s / m^2)^(1/4)``, ``s = Re K(f_0) / d``.
+
+    The lowest phase speed of bending waves on the rail smeared onto a Winkler foundation
+    of the supports' stiffness per length, ``s``, at ``f_0 = 1 Hz`` (quasi-static). Below
+    it, a load moving at constant speed radiates no free bending wave of its own.
+
+    Parameters
+    ----------
+    track : PeriodicTrack
+        Any periodic track (rigid base or ballasted).
+
+    Returns
+    -------
+    float
+        The critical speed, m/s.
+    """
+    k_static = float(np.real(track.support_stiffness(np.array([1.0]))[0]))
+    s = max(k_static, 0.0) / track.sleeper_spacing
+    rail = track.rail
+    return float((4.0 * rail.bending_stiffness * s / rail.mass_per_length**2) ** 0.25)
+
+
+def moving_load_receptance(
+    track: PeriodicTrack,
+    f: ArrayLike,
+    speed: float,
+    *,
+    order: int = 5,
+    r: ArrayLike = (0.0,),
+    tolerance: float = 1e-2,
+) -> MovingLoadResponse:
+    """Rail response to a unit harmonic point load moving at constant speed.
+
+    The load ``exp(i 2 pi f t)`` (N) is at ``x = v t``, on a sleeper at ``t = 0``; the
+    response at ``x = v t + r`` is ``exp(i 2 pi f t) sum_n A_n exp(i 2 pi n v t / d)``.
+    ``f = 0`` is the constant load: its harmonics ``n != 0`` are the parametric
+    (sleeper-passing) lines at ``n v / d``.
+
+    Parameters
+    ----------
+    track : PeriodicTrack
+        Rigid-base or ballasted periodic track with an Euler-Bernoulli rail.
+    f : array_like
+        Load frequencies in Hz (>= 0), ``(n_freq,)``.
+    speed : float
+        Load speed v in m/s, ``0 < v <= SPEED_FRACTION x critical_speed(track)``.
+    order : int
+        Highest harmonic order N kept (a count, 0 .. MAX_HARMONIC_ORDER).
+    r : array_like
+        Distances of the observation points ahead of the load, m (0: under the load).
+    tolerance : float
+        Largest allowed tail (:attr:`MovingLoadResponse.tail`) for ``N >= 1``.
+
+    Returns
+    -------
+    MovingLoadResponse
+
+    Raises
+    ------
+    CaseError
+        ``track.rail.shear_stiffness`` for a Timoshenko rail (no moving-load formulation
+        yet), ``moving.speed_m_per_s`` outside its bound, ``moving.harmonic_order`` out of
+        range or too low for the speed and band (naming the order needed),
+        ``moving.r_m`` or ``frequency`` not finite.
+
+    Examples
+    --------
+    >>> from railvib.pads import SpringDamper
+    >>> from railvib.track import Rail, PeriodicTrack
+    >>> track = PeriodicTrack(Rail(6.62e6, 60.64), SpringDamper(5e7, 5e4), 0.6)
+    >>> res = moving_load_receptance(track, [100.0, 500.0], 30.0, order=3)
+    >>> res.amplitudes.shape
+    (2, 1, 7)
+    """
+    f_arr, v, r_arr = _checked(track, f, speed, order, r, tolerance)
+    n_orders = np.arange(-order, order + 1)
+    amplitudes = _harmonics(track, f_arr, v, n_orders, r_arr)
+    res = MovingLoadResponse(f_arr, v, track.sleeper_spacing, r_arr, n_orders, amplitudes)
+    if order >= 1:
+        _check_order(res, tolerance)
+    return res
+
+
+def _checked(
+    track: PeriodicTrack,
+    f: ArrayLike,
+    speed: float,
+    order: int,
+    r: ArrayLike,
+    tolerance: float,
+) -> tuple[NDArray[np.float64], float, NDArray[np.float64]]:
+    """The inputs, checked before anything is computed."""
+    if not isinstance(track, PeriodicTrack):
+        raise CaseError("track", type(track).__name__, "a PeriodicTrack (rigid_base or ballasted)")
+    if track.rail.is_timoshenko:
+        raise CaseError(
+            "track.rail.shear_stiffness",
+            track.rail.shear_stiffness,
+            "omitted (an Euler-Bernoulli rail): the moving-load formulation uses the "
+            "Euler rail's free-beam Green's function (N)",
+        )
+    f_arr = np.atleast_1d(np.asarray(f, dtype=float))
+    if f_arr.ndim != 1 or not np.all(np.isfinite(f_arr) & (f_arr >= 0)):
+        raise CaseError("frequency", "negative or non-finite values", "finite and >= 0 (Hz)")
+    try:
+        v = float(speed)
+    except (TypeError, ValueError):
+        raise CaseError("moving.speed_m_per_s", speed, "a number > 0 (m/s)") from None
+    bound = SPEED_FRACTION * critical_speed(track)
+    if not (np.isfinite(v) and 0.0 < v <= bound):
+        raise CaseError(
+            "moving.speed_m_per_s",
+            speed,
+            f"> 0 and at most {bound:.4g} m/s ({SPEED_FRACTION:g} x this track's critical "
+            "speed, railvib.track.moving.critical_speed) (m/s)",
+        )
+    if isinstance(order, bool) or not isinstance(order, (int, np.integer)):
+        raise CaseError("moving.harmonic_order", order, f"an integer 0..{MAX_HARMONIC_ORDER}")
+    if not 0 <= order <= MAX_HARMONIC_ORDER:
+        raise CaseError("moving.harmonic_order", order, f"an integer 0..{MAX_HARMONIC_ORDER}")
+    if not (np.isfinite(tolerance) and 0.0 < tolerance < 1.0):
+        raise CaseError("moving.tolerance", tolerance, "between 0 and 1, exclusive (-)")
+    r_arr = np.atleast_1d(np.asarray(r, dtype=float))
+    if r_arr.ndim != 1 or not np.all(np.isfinite(r_arr)):
+        raise CaseError("moving.r_m", r, "finite distances ahead of the load (m)")
+    return f_arr, v, r_arr
+
+
+def _check_order(res: MovingLoadResponse, tolerance: float) -> None:
+    """Refuse an order whose outermost harmonics exceed `tolerance` of the largest one.
+
+    The order needed is extrapolated from the decay of the outer harmonics, taken as a
+    power law ``|A_n| ~ n^-p`` (the receptance over load position has a kink in its
+    third derivative at the sleepers, so ``p`` tends to 4).
+    """
+    tail = res.tail
+    worst = int(np.argmax(tail))
+    if tail[worst] <= tolerance:
+        return
+    n = res.orders.size // 2
+    size = np.abs(res.amplitudes[worst]).max(axis=0)
+    outer = max(size[0], size[-1])
+    inner = max(size[1], size[-2])
+    p = np.log(inner / outer) / np.log(n / (n - 1)) if n >= 2 and outer < inner else 1.0
+    p = max(float(p), 1.0)
+    needed = int(np.ceil(n * (tail[worst] / tolerance) ** (1.0 / p)))
+    f_lo, f_hi = float(res.f.min()), float(res.f.max())
+    raise CaseError(
+        "moving.harmonic_order",
+        n,
+        f"at least {max(needed, n + 1)} for v = {res.speed:g} m/s and {f_lo:g}-{f_hi:g} Hz: "
+        f"the harmonics |n| = {n} are {tail[worst]:.2g} of the largest at {res.f[worst]:g} Hz, "
+        f"above the tolerance {tolerance:g}",
+    )
+
+
+def _harmonics(
+    track: PeriodicTrack,
+    f: NDArray[np.float64],
+    v: float,
+    orders: NDArray[np.int64],
+    r: NDArray[np.float64],
+) -> NDArray[np.complex128]:
+    """``A_n(Omega, r)`` by the wavenumber integral, m/N, ``(n_freq, n_obs, n_harm)``."""
+    d = track.sleeper_spacing
+    rail = track.rail
+    m = rail.mass_per_length
+    ei, eta = rail.bending_stiffness, max(rail.loss_factor, VANISHING_LOSS_FACTOR)
+    k, weight = _quadrature(track, float(f.max(initial=0.0)), int(np.abs(orders).max()))
+    shift = 2.0 * np.pi * orders / d  # k_n - k
+    phase_r = np.exp(1j * np.outer(k, r))  # (n_k, n_obs)
+    phase_n = np.exp(1j * np.outer(shift, r))  # (n_harm, n_obs)
+    is_mean = orders == 0
+    out = np.empty((f.size, r.size, orders.size), dtype=np.complex128)
+    rows = max(1, _CHUNK // (k.size * orders.size))
+    for start in range(0, f.size, rows):  # chunks of frequencies, vectorised inside
+        omega = 2.0 * np.pi * f[start : start + rows, None] - k[None, :] * v  # fixed frame
+        sign = np.where(omega < 0.0, -1.0, 1.0)
+        ei_c = ei * (1.0 + 1j * eta * sign)  # hysteretic: EI (1 - i eta) at omega < 0
+        support = _support(track, omega)
+        lattice = _lattice_sum(k[None, :] * d, m * omega**2 * d**4 / ei_c) * d**4 / ei_c
+        g0 = 1.0 / (ei_c * k[None, :] ** 4 - m * omega**2)
+        reaction = support * g0 / (d + support * lattice)  # K w_0 / d
+        kn = k[None, :, None] + shift[None, None, :]
+        gn = 1.0 / (ei_c[..., None] * kn**4 - m * (omega**2)[..., None])
+        w = gn * (is_mean[None, None, :] - reaction[..., None])  # (rows, n_k, n_harm)
+        w *= weight[None, :, None]
+        block = np.einsum("fkn,kr->frn", w, phase_r, optimize=True)
+        out[start : start + rows] = block * phase_n.T[None, :, :] / (2.0 * np.pi)
+    return out
+
+
+def _support(track: PeriodicTrack, omega: NDArray[np.float64]) -> NDArray[np.complex128]:
+    """``K(omega)`` at signed fixed-frame frequencies: ``K(-omega) = conj K(omega)``."""
+    f_abs = np.maximum(np.abs(omega) / (2.0 * np.pi), 1e-9)  # a real system at f -> 0
+    k = track.support_stiffness(f_abs.ravel()).reshape(omega.shape)
+    return np.where(omega < 0.0, np.conj(k), k)
+
+
+def _lattice_sum(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDArray[np.complex128]:
+    """``sum_m 1 / ((kd + 2 pi m)^4 - beta4)`` in closed form, without cancellation.
+
+    With ``z^4 = beta4``, ``a = sin^2(kd/2)``: the partial fractions of ``1/(x^4 - z^4)``
+    and ``sum_m 1/((kd + 2 pi m)^2 - b^2) = sin b / (2 b (cos b - cos kd))`` give
+    ``[ -2 a s3 + (sinhc^2(z/2) sinc z + sinc^2(z/2) sinhc z) / 4 ] / (8 D)``, ``s3 = (sinh z
+    - sin z) / (2 z^3)`` (a Krylov series), ``D = sin((kd-z)/2) sin((kd+z)/2) sin((kd-iz)/2)
+    sin((kd+iz)/2)`` = ``(a - sin^2(z/2)) (a + sinh^2(z/2))``. Every term is even in ``z``
+    and in ``i z``, so no fourth root has to be chosen, and ``z -> 0`` loses no digits.
+    """
+    z = beta4**0.25
+    half = 0.5 * z
+    s3 = krylov_series(beta4, 1.0)[3]
+    a = np.sin(0.5 * kd) ** 2
+    sinc_h, sinhc_h = _sinc(half), _sinc(1j * half)
+    numerator = -2.0 * a * s3 + 0.25 * (sinhc_h**2 * _sinc(z) + sinc_h**2 * _sinc(1j * z))
+    denominator = (
+        np.sin(0.5 * kd - half)
+        * np.sin(0.5 * kd + half)
+        * np.sin(0.5 * kd - 1j * half)
+        * np.sin(0.5 * kd + 1j * half)
+    )
+    return np.asarray(numerator / (8.0 * denominator), dtype=np.complex128)
+
+
+def _sinc(z: NDArray[np.complex128]) -> NDArray[np.complex128]:
+    """``sin z / z`` (1 at 0); ``_sinc(i z) = sinh z / z``."""
+    small = np.abs(z) < 1e-4
+    safe = np.where(small, 1.0, z)
+    return np.where(small, 1.0 - z * z / 6.0, np.sin(safe) / safe)
+
+
+def _quadrature(
+    track: PeriodicTrack, f_max: float, order: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Wavenumber nodes (rad/m) and weights of the integral, shared by all frequencies.
+
+    Gauss-Legendre panels: coarse (``pi/d / 20``) over the core ``|k| <= k_core``, refined
+    (``pi/d / 100``) within ``pi/d / 10`` of each multiple of ``pi/d`` (the pinned-pinned
+    waves, the weakly damped ones), geometric beyond ``k_core``. ``k_core`` covers the
+    harmonic shifts ``2 pi n / d`` and four free bending wavenumbers at ``f_max``.
+    """
+    d = track.sleeper_spacing
+    unit = np.pi / d
+    rail = track.rail
+    k_bend = (rail.mass_per_length * (2.0 * np.pi * f_max) ** 2 / rail.bending_stiffness) ** 0.25
+    n_units = 2 * (order + 1) + int(np.ceil(4.0 * k_bend / unit)) + 1
+    coarse = np.arange(-n_units * 20, n_units * 20 + 1) * _COARSE_PANEL
+    fine = (np.arange(-10, 11) * _FINE_PANEL)[None, :] + np.arange(-n_units, n_units + 1)[:, None]
+    edges = np.unique(np.round(np.concatenate([coarse, fine.ravel()]), 12))
+    edges = edges[np.abs(edges) <= n_units] * unit
+    k_core = n_units * unit
+    tail = k_core * _TAIL_RATIO ** np.arange(1, 1 + int(np.ceil(np.log(_TAIL_FACTOR) / np.log(_TAIL_RATIO))))
+    edges = np.concatenate([-tail[::-1], edges, tail])
+    x, w = np.polynomial.legendre.leggauss(_GAUSS_ORDER)
+    mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * (edges[1:] - edges[:-1])
+    nodes = (mid[:, None] + half[:, None] * x[None, :]).ravel()
+    weights = (half[:, None] * w[None, :]).ravel()
+    return nodes, weights
