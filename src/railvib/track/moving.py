@@ -51,6 +51,9 @@ SPEED_FRACTION = 0.5
 #: most harmonics either side of the load frequency (each costs a few % of the run)
 MAX_HARMONIC_ORDER = 50
 
+#: harmonics computed beyond the order asked for, to estimate what it leaves out
+_EXTRA = 2
+
 #: Gauss-Legendre points per panel of the wavenumber quadrature
 _GAUSS_ORDER = 8
 
@@ -177,7 +180,8 @@ def moving_load_receptance(
     r : array_like
         Distances of the observation points ahead of the load, m (0: under the load).
     tolerance : float
-        Largest allowed tail (:attr:`MovingLoadResponse.tail`) for ``N >= 1``.
+        Largest harmonic left out (``|n| = N + 1, N + 2``, computed to check), relative to
+        the largest one, for ``N >= 1`` (dimensionless).
 
     Returns
     -------
@@ -201,12 +205,15 @@ def moving_load_receptance(
     (2, 1, 7)
     """
     f_arr, v, r_arr = _checked(track, f, speed, order, r, tolerance)
-    n_orders = np.arange(-order, order + 1)
+    # two harmonics more than asked for, to measure what the order leaves out
+    n_orders = np.arange(-order - _EXTRA, order + _EXTRA + 1)
     amplitudes = _harmonics(track, f_arr, v, n_orders, r_arr)
-    res = MovingLoadResponse(f_arr, v, track.sleeper_spacing, r_arr, n_orders, amplitudes)
     if order >= 1:
-        _check_order(res, tolerance)
-    return res
+        _check_order(f_arr, v, amplitudes, order, tolerance)
+    kept = amplitudes[:, :, _EXTRA : amplitudes.shape[2] - _EXTRA]
+    return MovingLoadResponse(
+        f_arr, v, track.sleeper_spacing, r_arr, n_orders[_EXTRA:-_EXTRA], kept
+    )
 
 
 def _checked(
@@ -254,31 +261,44 @@ def _checked(
     return f_arr, v, r_arr
 
 
-def _check_order(res: MovingLoadResponse, tolerance: float) -> None:
-    """Refuse an order whose outermost harmonics exceed `tolerance` of the largest one.
+def _check_order(
+    f: NDArray[np.float64],
+    v: float,
+    amplitudes: NDArray[np.complex128],
+    order: int,
+    tolerance: float,
+) -> None:
+    """Refuse an order that leaves out harmonics above `tolerance` of the largest one.
 
-    The order needed is extrapolated from the decay of the outer harmonics, taken as a
-    power law ``|A_n| ~ n^-p`` (the receptance over load position has a kink in its
-    third derivative at the sleepers, so ``p`` tends to 4).
+    `amplitudes` holds :data:`_EXTRA` harmonics more on each side than `order`. The order
+    needed is the lowest whose left-out harmonics are within the tolerance, extrapolated
+    beyond those computed as a power law ``|A_n| ~ n^-p`` (the receptance over load
+    position has a kink in its third derivative at the sleepers, so ``p`` tends to 4).
     """
-    tail = res.tail
-    worst = int(np.argmax(tail))
-    if tail[worst] <= tolerance:
+    size = np.abs(amplitudes).max(axis=1)  # (n_freq, n_harm)
+    size = size / np.maximum(size.max(axis=1, keepdims=True), np.finfo(float).tiny)
+    centre = size.shape[1] // 2
+    # the largest harmonic of order |n| >= j, for each j
+    beyond = [
+        np.maximum(size[:, : centre - j + 1].max(axis=1), size[:, centre + j :].max(axis=1))
+        for j in range(1, centre + 1)
+    ]
+    left_out = beyond[order]  # |n| > order
+    worst = int(np.argmax(left_out))
+    if left_out[worst] <= tolerance:
         return
-    n = res.orders.size // 2
-    size = np.abs(res.amplitudes[worst]).max(axis=0)
-    outer = max(size[0], size[-1])
-    inner = max(size[1], size[-2])
-    p = np.log(inner / outer) / np.log(n / (n - 1)) if n >= 2 and outer < inner else 1.0
-    p = max(float(p), 1.0)
-    needed = int(np.ceil(n * (tail[worst] / tolerance) ** (1.0 / p)))
-    f_lo, f_hi = float(res.f.min()), float(res.f.max())
+    needed = next((j for j in range(order + 1, centre) if beyond[j][worst] <= tolerance), None)
+    if needed is None:
+        outer, inner = beyond[centre - 1][worst], beyond[centre - 2][worst]
+        p = np.log(inner / outer) / np.log(centre / (centre - 1)) if outer < inner else 1.0
+        p = max(float(p), 1.0)
+        needed = int(np.ceil(centre * (outer / tolerance) ** (1.0 / p)))
     raise CaseError(
         "moving.harmonic_order",
-        n,
-        f"at least {max(needed, n + 1)} for v = {res.speed:g} m/s and {f_lo:g}-{f_hi:g} Hz: "
-        f"the harmonics |n| = {n} are {tail[worst]:.2g} of the largest at {res.f[worst]:g} Hz, "
-        f"above the tolerance {tolerance:g}",
+        order,
+        f"at least {needed} for v = {v:g} m/s and {float(f.min()):g}-{float(f.max()):g} Hz: "
+        f"the harmonics left out reach {left_out[worst]:.2g} of the largest at "
+        f"{f[worst]:g} Hz, above the tolerance {tolerance:g}",
     )
 
 
