@@ -32,7 +32,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
-from railvib.track.beam import krylov_series
 from railvib.track.periodic import VANISHING_LOSS_FACTOR, PeriodicTrack
 
 __all__ = [
@@ -351,30 +350,23 @@ def _lattice_sum(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDAr
     With ``z^4 = beta4``, ``a = sin^2(kd/2)``: the partial fractions of ``1/(x^4 - z^4)``
     and ``sum_m 1/((kd + 2 pi m)^2 - b^2) = sin b / (2 b (cos b - cos kd))`` give
     ``[ -2 a s3 + (sinhc^2(z/2) sinc z + sinc^2(z/2) sinhc z) / 4 ] / (8 D)``, ``s3 = (sinh z
-    - sin z) / (2 z^3)`` (a Krylov series), ``D = sin((kd-z)/2) sin((kd+z)/2) sin((kd-iz)/2)
-    sin((kd+iz)/2)`` = ``(a - sin^2(z/2)) (a + sinh^2(z/2))``. Every term is even in ``z``
-    and in ``i z``, so no fourth root has to be chosen, and ``z -> 0`` loses no digits.
+    - sin z) / (2 z^3)``, ``D = (a - sin^2(z/2)) (a + sinh^2(z/2))``. Every term is even in
+    ``z`` and in ``i z``, so no fourth root has to be chosen, and ``z -> 0`` loses no digits
+    (``s3`` by its series below ``|z| = 1``).
     """
     z = beta4**0.25
-    half = 0.5 * z
-    s3 = krylov_series(beta4, 1.0)[3]
+    z = np.where(z == 0, np.finfo(float).tiny, z)
+    sin_h, sinh_h = np.sin(0.5 * z), np.sinh(0.5 * z)
+    sin_z, sinh_z = 2.0 * sin_h * np.cos(0.5 * z), 2.0 * sinh_h * np.cosh(0.5 * z)
+    z2 = z * z
+    small = np.abs(beta4) < 1.0
+    zeta = np.where(small, beta4, 0.0)  # the series: sum zeta^k / (4k+3)!, |zeta| < 1
+    series = 1.0 / 6.0 + zeta * (1.0 / 5040.0 + zeta * (1.0 / 39916800.0 + zeta / 1.307674368e12))
+    s3 = np.where(small, series, (sinh_z - sin_z) / (2.0 * np.where(small, 1.0, z2 * z)))
     a = np.sin(0.5 * kd) ** 2
-    sinc_h, sinhc_h = _sinc(half), _sinc(1j * half)
-    numerator = -2.0 * a * s3 + 0.25 * (sinhc_h**2 * _sinc(z) + sinc_h**2 * _sinc(1j * z))
-    denominator = (
-        np.sin(0.5 * kd - half)
-        * np.sin(0.5 * kd + half)
-        * np.sin(0.5 * kd - 1j * half)
-        * np.sin(0.5 * kd + 1j * half)
-    )
-    return np.asarray(numerator / (8.0 * denominator), dtype=np.complex128)
-
-
-def _sinc(z: NDArray[np.complex128]) -> NDArray[np.complex128]:
-    """``sin z / z`` (1 at 0); ``_sinc(i z) = sinh z / z``."""
-    small = np.abs(z) < 1e-4
-    safe = np.where(small, 1.0, z)
-    return np.where(small, 1.0 - z * z / 6.0, np.sin(safe) / safe)
+    p, q = sin_h * sin_h, sinh_h * sinh_h
+    numerator = -2.0 * a * s3 + (q * sin_z + p * sinh_z) / (z2 * z)
+    return np.asarray(numerator / (8.0 * (a - p) * (a + q)), dtype=np.complex128)
 
 
 def _quadrature(
@@ -392,10 +384,14 @@ def _quadrature(
     rail = track.rail
     k_bend = (rail.mass_per_length * (2.0 * np.pi * f_max) ** 2 / rail.bending_stiffness) ** 0.25
     n_units = 2 * (order + 1) + int(np.ceil(4.0 * k_bend / unit)) + 1
-    coarse = np.arange(-n_units * 20, n_units * 20 + 1) * _COARSE_PANEL
-    fine = (np.arange(-10, 11) * _FINE_PANEL)[None, :] + np.arange(-n_units, n_units + 1)[:, None]
-    edges = np.unique(np.round(np.concatenate([coarse, fine.ravel()]), 12))
-    edges = edges[np.abs(edges) <= n_units] * unit
+    n_coarse = int(np.ceil(n_units / _COARSE_PANEL))
+    coarse = np.linspace(-n_units, n_units, 2 * n_coarse + 1)
+    n_fine = int(np.ceil(_FINE_WINDOW / _FINE_PANEL))
+    window = np.linspace(-_FINE_WINDOW, _FINE_WINDOW, 2 * n_fine + 1)
+    fine = window[None, :] + np.arange(-n_units, n_units + 1)[:, None]
+    inside = np.min(np.abs(coarse[:, None] - np.arange(-n_units, n_units + 1)), axis=1)
+    edges = np.concatenate([coarse[inside > _FINE_WINDOW], fine.ravel()])
+    edges = np.unique(np.round(edges[np.abs(edges) <= n_units], 12)) * unit
     k_core = n_units * unit
     tail = k_core * _TAIL_RATIO ** np.arange(1, 1 + int(np.ceil(np.log(_TAIL_FACTOR) / np.log(_TAIL_RATIO))))
     edges = np.concatenate([-tail[::-1], edges, tail])
