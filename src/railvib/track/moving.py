@@ -107,7 +107,13 @@ class MovingLoadResponse:
 
     @property
     def response_frequencies_hz(self) -> NDArray[np.float64]:
-        """Frequency of each harmonic in the moving frame, ``f + n v / d``, Hz, ``(n_freq, 2N+1)``."""
+        """Frequency of each harmonic in the moving frame, ``f + n v / d``, Hz, ``(n_freq, 2N+1)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Hz.
+        """
         return self.f[:, None] + self.orders[None, :] * self.sleeper_passing_frequency_hz
 
     @property
@@ -393,7 +399,8 @@ def _quadrature(
     edges = np.concatenate([coarse[inside > _FINE_WINDOW], fine.ravel()])
     edges = np.unique(np.round(edges[np.abs(edges) <= n_units], 12)) * unit
     k_core = n_units * unit
-    tail = k_core * _TAIL_RATIO ** np.arange(1, 1 + int(np.ceil(np.log(_TAIL_FACTOR) / np.log(_TAIL_RATIO))))
+    n_tail = int(np.ceil(np.log(_TAIL_FACTOR) / np.log(_TAIL_RATIO)))
+    tail = k_core * _TAIL_RATIO ** np.arange(1, 1 + n_tail)
     edges = np.concatenate([-tail[::-1], edges, tail])
     x, w = np.polynomial.legendre.leggauss(_GAUSS_ORDER)
     mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * (edges[1:] - edges[:-1])

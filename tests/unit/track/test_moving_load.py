@@ -76,6 +76,7 @@ def test_mean_is_the_position_average_at_low_speed():
     np.testing.assert_allclose(res.mean[:, 0], ref, rtol=1e-3)
 
 
+@pytest.mark.slow  # 250 frequencies: 4-8 s
 def test_pinned_pinned_peak_splits_by_the_sleeper_passing_frequency():
     """The stationary mean peaks at f_pp; the moving one at f_pp -+ v / (2 d)."""
     v, d = 60.0, NORDBORG.sleeper_spacing
@@ -168,7 +169,9 @@ def test_order_too_low_says_the_order_needed():
 
 def test_timoshenko_rail_refused():
     track = PeriodicTrack(
-        Rail(6.62e6, 60.64, shear_stiffness=2.45e8, rotary_inertia=0.25), SpringDamper(5e7, 5e4), 0.6
+        Rail(6.62e6, 60.64, shear_stiffness=2.45e8, rotary_inertia=0.25),
+        SpringDamper(5e7, 5e4),
+        0.6,
     )
     with pytest.raises(CaseError) as err:
         moving_load_receptance(track, [100.0], 30.0)
