@@ -109,7 +109,7 @@ def simulate_moving_load(
     track : FiniteTrack
         Finite track whose mesh covers the whole path with margins (absorbing ends).
     f : array_like
-        Load frequencies in Hz (> 0), ``(n_freq,)``.
+        Load frequencies in Hz (>= 0; 0 is a constant load), ``(n_freq,)``.
     speed : float
         v in m/s (> 0).
     dt : float
