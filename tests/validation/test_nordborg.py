@@ -66,6 +66,8 @@ def test_broadband_level_follows_nordborg():
     np.testing.assert_allclose(_level_db(f), expected, atol=2.0)
 
 
+# his rail is undamped: the grid points at the cusps themselves (within 0.05 Hz) warn
+@pytest.mark.filterwarnings("ignore::railvib.errors.SolverWarning")
 def test_split_pinned_pinned_peaks_at_nordborgs_frequencies():
     f = np.arange(1150.0, 1300.0, 0.5)
     level = _level_db(f)
