@@ -44,11 +44,13 @@ __all__ = [
 ]
 
 #: the speed bound as a fraction of the track's critical speed (:func:`critical_speed`):
-#: trains run at under 0.3 of it on ballasted track; near it the response grows without
-#: the damping bound the quadrature grid is laid out for (a few decay lengths per bay)
+#: trains run at under 0.3 of it on ballasted track; towards it the load sheds waves whose
+#: group velocity is its own speed, the steady state is reached ever more slowly and the
+#: wavenumber refinement grows without bound
 SPEED_FRACTION = 0.5
 
-#: most harmonics either side of the load frequency (each costs a few % of the run)
+#: most harmonics either side of the load frequency (the cost grows about linearly with
+#: the order: benchmarks/bench_moving.py)
 MAX_HARMONIC_ORDER = 50
 
 #: harmonics computed beyond the order asked for, to estimate what it leaves out
