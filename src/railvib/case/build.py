@@ -105,7 +105,7 @@ def build_track(case: Case) -> PeriodicTrack:
         if p.kind == "member" and p.key != "pad" and given.get(p.key) is not None:
             layer = PADS.from_dict(dict(given[p.key]), f"track.{p.key}")
             values[p.name] = layer if n == 1.0 else ScaledPad(layer, n)
-        elif p.unit in PER_RAIL_UNITS and p.name in values:
+        elif p.kind == "number" and p.unit in PER_RAIL_UNITS and p.name in values:
             values[p.name] = n * values[p.name]  # a quantity per rail: both rails' share
     track = member.build(**values)
     assert isinstance(track, PeriodicTrack), "every track model is a periodic track"

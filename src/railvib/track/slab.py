@@ -338,7 +338,9 @@ class SlabTrack(PeriodicTrack):
         )
 
     # -- the cell ---------------------------------------------------------------------------
-    def _cell(self, f: NDArray[np.float64], extra: NDArray[np.float64]) -> tuple[Cell, dict[float, int]]:
+    def _cell(
+        self, f: NDArray[np.float64], extra: NDArray[np.float64]
+    ) -> tuple[Cell, dict[float, int]]:
         """The period at frequencies `f` with extra rail nodes at local positions `extra` (m).
 
         Returns the cell and ``{local position: node}`` of its rail nodes.
@@ -768,6 +770,4 @@ def unit_slab_track(
 TRACKS.register("floating_slab", parameters=FLOATING_SLAB_PARAMETERS, build=floating_slab_track)(
     FloatingSlabTrack
 )
-TRACKS.register("unit_slab", parameters=UNIT_SLAB_PARAMETERS, build=unit_slab_track)(
-    UnitSlabTrack
-)
+TRACKS.register("unit_slab", parameters=UNIT_SLAB_PARAMETERS, build=unit_slab_track)(UnitSlabTrack)

@@ -141,7 +141,9 @@ class FiniteSlabTrack:
         pts = pts[np.concatenate([[True], np.diff(pts) > _MERGE])]
         out = []
         for lo, hi in zip(pts[:-1], pts[1:], strict=True):
-            n_el = max(1, int(np.ceil(self.elements_per_span * (hi - lo) / self.fastener_spacing - 1e-9)))
+            n_el = max(
+                1, int(np.ceil(self.elements_per_span * (hi - lo) / self.fastener_spacing - 1e-9))
+            )
             out.append(np.linspace(lo, hi, n_el + 1)[:-1])
         out.append(np.array([b]))
         return np.concatenate(out)
@@ -180,7 +182,9 @@ class FiniteSlabTrack:
 
     def _slab_node(self, x: float) -> int:
         """Node number of the slab under the rail position `x` (m)."""
-        for (a, b), nodes, first in zip(self.slabs, self.slab_nodes, self._slab_offsets, strict=True):
+        for (a, b), nodes, first in zip(
+            self.slabs, self.slab_nodes, self._slab_offsets, strict=True
+        ):
             if a - _MERGE <= x <= b + _MERGE:
                 return first + int(np.argmin(np.abs(nodes - x)))
         raise CaseError("finite_slab.position", x, "on a slab (m)")
@@ -211,9 +215,13 @@ class FiniteSlabTrack:
         consistent Winkler matrix, times ``k_f``); ``pads``, ``bearings``: unit springs;
         ``joints``: the joint springs; ``absorber``: the dashpots (times ``i omega``).
         """
-        r, c, k, m = self._beam(self.rail_nodes, 0, self.rail.bending_stiffness, self.rail.mass_per_length)
-        parts: dict[str, list[list]] = {name: [[], [], []] for name in (
-            "k_slab", "mass_slab", "pads", "bearings", "joints", "absorber")}
+        r, c, k, m = self._beam(
+            self.rail_nodes, 0, self.rail.bending_stiffness, self.rail.mass_per_length
+        )
+        parts: dict[str, list[list]] = {
+            name: [[], [], []]
+            for name in ("k_slab", "mass_slab", "pads", "bearings", "joints", "absorber")
+        }
         for nodes, first in zip(self.slab_nodes, self._slab_offsets, strict=True):
             rs, cs, ks, ms = self._beam(nodes, first, self.slab_bending_stiffness, 1.0)
             for name, vals in (("k_slab", ks), ("mass_slab", ms)):
@@ -247,7 +255,10 @@ class FiniteSlabTrack:
             for s in range(len(self.slabs) - 1):
                 end = self._slab_offsets[s] + self.slab_nodes[s].size - 1
                 start = self._slab_offsets[s + 1]
-                for dof, value in ((0, self.joint_shear_stiffness), (1, self.joint_bending_stiffness)):
+                for dof, value in (
+                    (0, self.joint_shear_stiffness),
+                    (1, self.joint_bending_stiffness),
+                ):
                     if value:
                         spring("joints", 2 * end + dof, 2 * start + dof, float(value))
         out = {"k_rail": self._sparse([r], [c], [k]), "mass_rail": self._sparse([r], [c], [m])}
