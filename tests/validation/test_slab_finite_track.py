@@ -82,13 +82,13 @@ def test_floating_slab_matches_the_finite_model_at_low_frequency():
 @pytest.mark.slow
 @pytest.mark.parametrize("name", TYPES)
 def test_receptances_match_the_finite_model_from_1_hz_to_2_khz(name):
-    # two meshes, each where it is exact enough: below 200 Hz 8 elements per spacing and
-    # 1440 m of track (the slab's long waves; the jointed slabs' travel furthest), above
-    # it 32 elements (Hermite error ~ h^4: 6e-5 at 8, 2e-7 at 32 near 2 kHz) and 480 m.
-    # Measured maxima 3e-7 (floating), 2e-7 (bearings), 8e-7 (unit), 8e-7 (jointed)
-    wave, finite, x = _pair(name, margin=1200, elements=8, absorber=900)
+    # two meshes, each where it is exact enough: below 200 Hz 12 elements per spacing
+    # and 1440 m of track (the slab's long waves; the jointed slabs' travel furthest),
+    # above it 48 elements and 480 m (the Hermite error falls as h^4: 1.3e-6 at 32 near
+    # 2 kHz, 8e-7 at 8 near 200 Hz)
+    wave, finite, x = _pair(name, margin=1200, elements=12, absorber=900)
     low = _error(wave, finite, np.geomspace(1.0, 200.0, 10), x)
-    wave, finite, x = _pair(name, margin=400, elements=32, absorber=300)
+    wave, finite, x = _pair(name, margin=400, elements=48, absorber=300)
     high = _error(wave, finite, np.geomspace(200.0, 2000.0, 10), x)
     assert max(low, high) < 1e-6, (low, high)
 
