@@ -11,12 +11,15 @@ import railvib.contact
 import railvib.grid
 import railvib.solve
 import railvib.track.periodic
+import railvib.track.slab
 
 ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
 
 
-@pytest.mark.parametrize("doc", ["README.md", "docs/user-guide.md", "docs/extending.md"])
+@pytest.mark.parametrize(
+    "doc", ["README.md", "docs/user-guide.md", "docs/extending.md", "docs/slab-track.md"]
+)
 def test_python_examples_in_docs_run(doc, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / doc).read_text(), flags=re.S)
@@ -35,7 +38,15 @@ def test_readme_opens_with_the_two_commands():
 
 
 @pytest.mark.parametrize(
-    "module", [railvib, railvib.grid, railvib.contact, railvib.track.periodic, railvib.solve]
+    "module",
+    [
+        railvib,
+        railvib.grid,
+        railvib.contact,
+        railvib.track.periodic,
+        railvib.track.slab,
+        railvib.solve,
+    ],
 )
 def test_docstring_examples(module):
     result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)

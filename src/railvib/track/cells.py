@@ -210,8 +210,11 @@ class Cell:
 def _solve(k: NDArray[np.complex128], rhs: NDArray[np.complex128]) -> NDArray[np.complex128]:
     """``k^-1 rhs`` stacked, with rows and columns scaled by ``|diag k|^(-1/2)``."""
     s = 1.0 / np.sqrt(np.abs(np.einsum("fii->fi", k)))
-    scaled = k * s[:, :, None] * s[:, None, :]
-    return np.asarray(np.linalg.solve(scaled, rhs * s[:, :, None]) * s[:, :, None])
+    scaled = k * s[:, :, None]
+    scaled *= s[:, None, :]
+    out = np.linalg.solve(scaled, rhs * s[:, :, None])
+    out *= s[:, :, None]
+    return np.asarray(out)
 
 
 @dataclass(frozen=True, eq=False)

@@ -59,6 +59,10 @@ MAX_TIMOSHENKO_SPAN_WAVENUMBER = 12.0
 #: largest ``|beta| L`` of an Euler span (closed form: cosh stays far below overflow)
 MAX_EULER_SPAN_WAVENUMBER = 300.0
 
+#: complex entries of the cell matrices of one frequency block (16 MB): a block's working
+#: set stays in the cache instead of streaming (n_freq, n_dof, n_dof) arrays through memory
+CELL_BLOCK_ENTRIES = 2**20
+
 #: positions closer than this fraction of the period are one node
 _MERGE = 1e-9
 
@@ -447,14 +451,26 @@ class SlabTrack(PeriodicTrack):
         self.check_frequencies(f)
         load_cell, load_x = self._locate(x_load)
         obs_cell, obs_x = self._locate(x_obs)
-        cell, rail_nodes = self._cell(f, np.concatenate([load_x, obs_x]))
-        chain = cell_waves(cell)
-
-        def dofs(local: NDArray[np.float64]) -> NDArray[np.intp]:
+        extra = np.concatenate([load_x, obs_x])
+        out = np.empty((f.size, x_obs.size, x_load.size), dtype=np.complex128)
+        for block in self._blocks(f, extra):
+            cell, rail_nodes = self._cell(f[block], extra)
             keys = np.array(list(rail_nodes))
-            return np.array([2 * rail_nodes[float(keys[np.argmin(abs(keys - x))])] for x in local])
 
-        return cell_receptance(chain, (load_cell, dofs(load_x)), (obs_cell, dofs(obs_x)))
+            def dofs(local: NDArray[np.float64]) -> NDArray[np.intp]:
+                nodes = [rail_nodes[float(keys[np.argmin(abs(keys - x))])] for x in local]
+                return 2 * np.array(nodes, dtype=np.intp)
+
+            out[block] = cell_receptance(
+                cell_waves(cell), (load_cell, dofs(load_x)), (obs_cell, dofs(obs_x))
+            )
+        return out
+
+    def _blocks(self, f: NDArray[np.float64], extra: NDArray[np.float64]) -> list[slice]:
+        """Frequency blocks whose cell matrices (``n_dof^2`` each) fill about 16 MB."""
+        n_dof = 2 * (self._rail_spans(extra).size + self._slab_nodes().size)
+        size = max(64, CELL_BLOCK_ENTRIES // n_dof**2)
+        return [slice(i, i + size) for i in range(0, f.size, size)]
 
     def propagation_constants(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Propagation constants ``mu = exp(-gamma L)`` of the right-going waves per period.
@@ -473,8 +489,11 @@ class SlabTrack(PeriodicTrack):
         """
         f = _as_freq(f)
         self.check_frequencies(f)
-        cell, _ = self._cell(f, np.zeros(0))
-        return cell_waves(cell).propagation_constants()
+        parts = [
+            cell_waves(self._cell(f[block], np.zeros(0))[0]).propagation_constants()
+            for block in self._blocks(f, np.zeros(0))
+        ]
+        return np.concatenate(parts)
 
 
 @dataclass(frozen=True)
