@@ -196,11 +196,11 @@ class Cell:
         for a, b, block in self.spans:
             dofs = np.array([2 * a, 2 * a + 1, 2 * b, 2 * b + 1])
             k[:, dofs[:, None], dofs[None, :]] += block
-        for a, b, dof, value in self.springs:
+        for a, other, dof, value in self.springs:
             i = 2 * a + dof
             k[:, i, i] += value
-            if b is not None:
-                j = 2 * b + dof
+            if other is not None:
+                j = 2 * other + dof
                 k[:, j, j] += value
                 k[:, i, j] -= value
                 k[:, j, i] -= value
@@ -337,7 +337,7 @@ def cell_receptance(
     load: tuple[NDArray[np.int64], NDArray[np.intp]],
     obs: tuple[NDArray[np.int64], NDArray[np.intp]],
 ) -> NDArray[np.complex128]:
-    """Displacement of DOFs per unit force on DOFs of the infinite chain, ``(n_freq, n_obs, n_load)``.
+    """Displacement of DOFs per unit force on DOFs of the chain, ``(n_freq, n_obs, n_load)``.
 
     Parameters
     ----------

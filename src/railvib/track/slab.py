@@ -236,7 +236,7 @@ class SlabTrack(PeriodicTrack):
         """Bearing positions in the cell, m (with :attr:`bearing`)."""
 
     def _joints(self) -> tuple[float, float] | None:
-        """``(shear N/m, bending N m/rad)`` of the slab joint, None for a continuous slab or free joints."""
+        """``(shear N/m, bending N m/rad)`` of a joint; None: a continuous slab or free joints."""
         return None
 
     # -- checks -----------------------------------------------------------------------------
@@ -455,15 +455,9 @@ class SlabTrack(PeriodicTrack):
         out = np.empty((f.size, x_obs.size, x_load.size), dtype=np.complex128)
         for block in self._blocks(f, extra):
             cell, rail_nodes = self._cell(f[block], extra)
-            keys = np.array(list(rail_nodes))
-
-            def dofs(local: NDArray[np.float64]) -> NDArray[np.intp]:
-                nodes = [rail_nodes[float(keys[np.argmin(abs(keys - x))])] for x in local]
-                return 2 * np.array(nodes, dtype=np.intp)
-
-            out[block] = cell_receptance(
-                cell_waves(cell), (load_cell, dofs(load_x)), (obs_cell, dofs(obs_x))
-            )
+            load = (load_cell, _rail_dofs(rail_nodes, load_x))
+            obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
+            out[block] = cell_receptance(cell_waves(cell), load, obs)
         return out
 
     def _blocks(self, f: NDArray[np.float64], extra: NDArray[np.float64]) -> list[slice]:
@@ -502,8 +496,12 @@ class FloatingSlabTrack(SlabTrack):
 
     Parameters
     ----------
-    rail, pad, sleeper_spacing, pad_temperature, slab_bending_stiffness, slab_mass_per_length, slab_loss_factor, foundation, bearing
-        As :class:`SlabTrack` (fasteners at ``x = n d``).
+    rail, pad, sleeper_spacing, pad_temperature : object
+        As :class:`SlabTrack` (fasteners at ``x = n d``; spacing in m, temperature in degC).
+    slab_bending_stiffness, slab_mass_per_length, slab_loss_factor : float
+        As :class:`SlabTrack` (N m^2, kg/m, -).
+    foundation, bearing : PadModel, optional
+        As :class:`SlabTrack` (N/m^2, N/m).
     bearing_spacing_fasteners : int
         With `bearing`: a bearing under every this many fasteners (>= 1), at ``x = 0``
         among them; the cell is this many fastener spacings.
@@ -561,8 +559,12 @@ class UnitSlabTrack(SlabTrack):
 
     Parameters
     ----------
-    rail, pad, sleeper_spacing, pad_temperature, slab_bending_stiffness, slab_mass_per_length, slab_loss_factor, foundation, bearing
-        As :class:`SlabTrack`.
+    rail, pad, sleeper_spacing, pad_temperature : object
+        As :class:`SlabTrack` (spacing in m, temperature in degC).
+    slab_bending_stiffness, slab_mass_per_length, slab_loss_factor : float
+        As :class:`SlabTrack` (N m^2, kg/m, -).
+    foundation, bearing : PadModel, optional
+        As :class:`SlabTrack` (N/m^2, N/m; bearings under every fastener).
     slab_length : float
         L_s in m (>= d and >= n d).
     fasteners_per_slab : int
@@ -650,6 +652,13 @@ def _merged(x: NDArray[np.float64], period: float) -> NDArray[np.float64]:
     return x[keep]
 
 
+def _rail_dofs(rail_nodes: dict[float, int], local: NDArray[np.float64]) -> NDArray[np.intp]:
+    """The displacement DOF of the rail node nearest each local position (m)."""
+    keys = np.array(list(rail_nodes))
+    nodes = [rail_nodes[float(keys[np.argmin(np.abs(keys - x))])] for x in local]
+    return 2 * np.array(nodes, dtype=np.intp)
+
+
 def _at(nodes: NDArray[np.float64], x: float) -> int:
     """Index of the first node at position `x`."""
     return int(np.flatnonzero(np.abs(nodes - x) <= 2 * _MERGE * max(1.0, abs(x)))[0])
@@ -674,7 +683,7 @@ def floating_slab_track(
     bearing: PadModel | None = None,
     bearing_spacing_fasteners: int = 1,
 ) -> FloatingSlabTrack:
-    """The floating slab track of a ``[track]`` table's checked values (see :class:`FloatingSlabTrack`).
+    """The floating slab track of a ``[track]`` table's checked values (:class:`FloatingSlabTrack`).
 
     Parameters
     ----------
@@ -733,7 +742,7 @@ def unit_slab_track(
     joint_shear_stiffness: float | None = None,
     joint_bending_stiffness: float | None = None,
 ) -> UnitSlabTrack:
-    """The unit slab track of a ``[track]`` table's checked values (see :class:`UnitSlabTrack`).
+    """The unit slab track of a ``[track]`` table's checked values (:class:`UnitSlabTrack`).
 
     Parameters
     ----------

@@ -117,9 +117,9 @@ class FiniteSlabTrack:
         """Fastener positions in m, increasing."""
         d = self.fastener_spacing
         if self.slab_length is None:
-            n = np.arange(np.ceil(self.x_min / d - 1e-9), np.floor(self.x_max / d + 1e-9) + 1)
-            return n * d
-        ls, n = self.slab_length, self.fasteners_per_slab
+            k = np.arange(np.ceil(self.x_min / d - 1e-9), np.floor(self.x_max / d + 1e-9) + 1)
+            return np.asarray(k * d, dtype=np.float64)
+        ls, n = self.slab_length, int(self.fasteners_per_slab)
         first = (ls - (n - 1) * d) / 2.0
         slabs = np.arange(np.floor(self.x_min / ls) - 1, np.ceil(self.x_max / ls) + 1)
         x = (slabs[:, None] * ls + first + d * np.arange(n)[None, :]).ravel()
