@@ -9,10 +9,11 @@ import pytest
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.case import load_preset_case
-from railvib.case.build import build_track
+from railvib.case.build import build_system, build_track
 from railvib.errors import CaseError
 from railvib.pads import Hysteretic, SpringDamper
 from railvib.pads.base import PadModel
+from railvib.sweep.stacked import frf_stack
 from railvib.track import FloatingSlabTrack, PeriodicTrack, Rail, UnitSlabTrack
 from railvib.track.beam import dynamic_stiffness
 from railvib.track.cells import span_stiffness
@@ -78,7 +79,11 @@ def test_span_stiffness_series_and_closed_form_agree():
     np.testing.assert_allclose(mine, closed, rtol=1e-11, atol=1e-11 * np.abs(closed).max())
 
 
-@pytest.mark.parametrize("rail", [UIC60, TIMOSHENKO], ids=["euler", "timoshenko"])
+@pytest.mark.parametrize(
+    "rail",
+    [UIC60, pytest.param(TIMOSHENKO, marks=pytest.mark.slow)],  # expm per span: ~1 s
+    ids=["euler", "timoshenko"],
+)
 @pytest.mark.parametrize("kind", ["continuous", "bearings", "unit"])
 def test_rigid_slab_is_the_rigid_base_track(rail, kind):
     # slab EI, mass and support all 1e13 times the real ones: the slab's impedance seen
@@ -267,6 +272,16 @@ def test_rigid_base_wave_methods_are_refused():
     # the slab couples the fasteners: no per-fastener support exists to hand to them
     with pytest.raises(CaseError) as err:
         _tracks()["floating"].cell_transfer([10.0])
+    assert err.value.field == "track.model"
+
+
+def test_gpu_stacked_kernels_refuse_a_slab_track():
+    # frf_stack holds the rigid-base rail's waves on a pad stiffness: a slab track cannot
+    # be handed to it as one, and must not be solved as a rigid base silently
+    case = load_preset_case("floating_slab_metro")
+    system = build_system(case)
+    with pytest.raises(CaseError) as err:
+        frf_stack(system, np.array([1.0, 2.0]), np.full((1, 2), 4.2e6 + 0j), [20.0])
     assert err.value.field == "track.model"
 
 
