@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, NonFiniteResult
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_value
 from railvib.track.base import TRACKS
@@ -442,6 +442,12 @@ class SlabTrack(PeriodicTrack):
         -------
         numpy.ndarray
             Complex receptance in m/N, ``(n_freq, n_obs, n_load)``.
+
+        Raises
+        ------
+        NonFiniteResult
+            Where a value is not finite (the doubling overflowed: no frequency of the
+            validation grids does with the loss factor :data:`VANISHING_LOSS_FACTOR`).
         """
         if waves is not None:
             raise CaseError("waves", "given", "None for a slab track (its cell is solved here)")
@@ -461,6 +467,13 @@ class SlabTrack(PeriodicTrack):
             load = (load_cell, _rail_dofs(rail_nodes, load_x))
             obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
             out[block] = cell_receptance(cell_waves(cell), load, obs)
+        bad = ~np.isfinite(out).all(axis=(1, 2))
+        if np.any(bad):
+            raise NonFiniteResult(
+                f"track receptance: {int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) "
+                "are not finite: the doubling did not resolve the slab track's waves there; "
+                "give track.rail.loss_factor or track.slab_loss_factor (e.g. 0.01)"
+            )
         return out
 
     def _blocks(self, f: NDArray[np.float64], extra: NDArray[np.float64]) -> list[slice]:
