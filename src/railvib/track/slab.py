@@ -346,14 +346,17 @@ class SlabTrack(PeriodicTrack):
 
     # -- the cell ---------------------------------------------------------------------------
     def _cell(
-        self, f: NDArray[np.float64], extra: NDArray[np.float64]
+        self,
+        f: NDArray[np.float64],
+        extra: NDArray[np.float64],
+        layers: dict[str, NDArray[np.complex128]],
     ) -> tuple[Cell, dict[float, int]]:
         """The period at frequencies `f` with extra rail nodes at local positions `extra` (m).
 
-        Returns the cell and ``{local position: node}`` of its rail nodes.
+        `layers` holds :meth:`layer_stiffness` at `f`. Returns the cell and ``{local
+        position: node}`` of its rail nodes.
         """
         period = self.period
-        layers = self.layer_stiffness(f)
         omega2 = (2.0 * np.pi * f) ** 2
         rail_x = self._rail_spans(extra)
         slab_x = self._slab_nodes()
@@ -461,9 +464,12 @@ class SlabTrack(PeriodicTrack):
         load_cell, load_x = self._locate(x_load)
         obs_cell, obs_x = self._locate(x_obs)
         extra = np.concatenate([load_x, obs_x])
+        # the layers once over all of f (a stacked sweep's pads are given point by point)
+        layers = self.layer_stiffness(f)
         out = np.empty((f.size, x_obs.size, x_load.size), dtype=np.complex128)
         for block in self._blocks(f, extra):
-            cell, rail_nodes = self._cell(f[block], extra)
+            part = {name: k[block] for name, k in layers.items()}
+            cell, rail_nodes = self._cell(f[block], extra, part)
             load = (load_cell, _rail_dofs(rail_nodes, load_x))
             obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
             out[block] = cell_receptance(cell_waves(cell), load, obs)
@@ -499,9 +505,13 @@ class SlabTrack(PeriodicTrack):
         """
         f = _as_freq(f)
         self.check_frequencies(f)
+        layers = self.layer_stiffness(f)
+        none = np.zeros(0)
         parts = [
-            cell_waves(self._cell(f[block], np.zeros(0))[0]).propagation_constants()
-            for block in self._blocks(f, np.zeros(0))
+            cell_waves(
+                self._cell(f[block], none, {k: v[block] for k, v in layers.items()})[0]
+            ).propagation_constants()
+            for block in self._blocks(f, none)
         ]
         return np.concatenate(parts)
 

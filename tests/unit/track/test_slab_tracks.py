@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pytest
@@ -13,7 +13,7 @@ from railvib.case.build import build_system, build_track
 from railvib.errors import CaseError
 from railvib.pads import Hysteretic, SpringDamper
 from railvib.pads.base import PadModel
-from railvib.sweep.stacked import frf_stack
+from railvib.sweep.stacked import PadStack, frf_stack
 from railvib.track import FloatingSlabTrack, PeriodicTrack, Rail, UnitSlabTrack
 from railvib.track.beam import dynamic_stiffness
 from railvib.track.cells import span_stiffness
@@ -288,6 +288,20 @@ def test_rigid_base_wave_methods_are_refused():
     with pytest.raises(CaseError) as err:
         _tracks()["floating"].cell_transfer([10.0])
     assert err.value.field == "track.model"
+
+
+def test_pads_given_point_by_point_over_many_blocks():
+    # a stacked sweep hands the track its pads point by point (PadStack: stiffness only at
+    # exactly its own number of points) over more points than one of the track's blocks:
+    # the same arithmetic as the pad model itself, so equal to rounding (1e-14)
+    track = _tracks()["jointed"]
+    f = np.geomspace(1.0, 500.0, 1500)  # > 495 points: the 46-DOF cell's block
+    stacked = replace(track, pad=PadStack(PAD.stiffness(f)))
+    x = [0.3, 2.5]
+    np.testing.assert_allclose(stacked.receptance(f, x, x), track.receptance(f, x, x), rtol=1e-14)
+    np.testing.assert_allclose(
+        stacked.propagation_constants(f), track.propagation_constants(f), rtol=1e-14
+    )
 
 
 def test_gpu_stacked_kernels_refuse_a_slab_track():
