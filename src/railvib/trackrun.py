@@ -23,7 +23,7 @@ from railvib.errors import CaseError
 from railvib.grid import FrequencyGrid
 from railvib.io import railvib_version, staged_folder, write_text
 from railvib.results.dataset import save_netcdf
-from railvib.track.base import TrackModel
+from railvib.track.base import SupportResponse, TrackModel
 from railvib.track.outputs import (
     FRF_QUANTITIES,
     TrackDecay,
@@ -220,31 +220,37 @@ def track_dataset(
                 np.abs(alpha) * omega[:, None] ** power,
                 _attrs(unit, f"|{name}|"),
             )
-    sup = track.support_response(f, x_load, n_supports)
-    fs = ("frequency", "support")
-    for mass, values in sup.displacement.items():
-        if mass != "rail":
-            data[f"{mass}_displacement"] = (
+    try:
+        sup: SupportResponse | None = track.support_response(f, x_load, n_supports)
+    except NotImplementedError:  # a slab track: its supports are not modelled one by one
+        sup = None
+    if sup is not None:
+        fs = ("frequency", "support")
+        for mass, values in sup.displacement.items():
+            if mass != "rail":
+                data[f"{mass}_displacement"] = (
+                    fs,
+                    np.abs(values),
+                    _attrs("m/N", f"|{mass.replace('_', ' ')} displacement| per unit force"),
+                )
+        data["rail_seat_displacement"] = (
+            fs,
+            np.abs(sup.displacement["rail"]),
+            _attrs("m/N", "|rail displacement| at each rail seat per unit force"),
+        )
+        for layer, values in sup.force.items():
+            data[f"{layer}_force"] = (
                 fs,
                 np.abs(values),
-                _attrs("m/N", f"|{mass.replace('_', ' ')} displacement| per unit force"),
+                _attrs("N/N", f"|force in the {layer}| per unit force"),
             )
-    data["rail_seat_displacement"] = (
-        fs,
-        np.abs(sup.displacement["rail"]),
-        _attrs("m/N", "|rail displacement| at each rail seat per unit force"),
-    )
-    for layer, values in sup.force.items():
-        data[f"{layer}_force"] = (
+        data["foundation_force"] = (
             fs,
-            np.abs(values),
-            _attrs("N/N", f"|force in the {layer}| per unit force"),
+            np.abs(sup.foundation_force),
+            _attrs(
+                "N/N", f"|force transmitted to the ground| (the {sup.foundation}) per unit force"
+            ),
         )
-    data["foundation_force"] = (
-        fs,
-        np.abs(sup.foundation_force),
-        _attrs("N/N", f"|force transmitted to the ground| (the {sup.foundation}) per unit force"),
-    )
     mu = track.propagation_constants(f)
     decay_db, propagates = wave_decay(mu, track.period)
     fw = ("frequency", "wave")
@@ -283,7 +289,6 @@ def track_dataset(
     coords = {
         "frequency": ("frequency", f, _attrs("Hz", "frequency")),
         "position": ("position", x_obs, _attrs("m", "observation point along the rail")),
-        "support": ("support", sup.x, _attrs("m", "rail seat along the rail")),
         "wave": (
             "wave",
             np.arange(1, mu.shape[1] + 1),
@@ -292,6 +297,8 @@ def track_dataset(
         "band": ("band", decay.centres, _attrs("Hz", "one-third octave band centre (exact)")),
         "band_nominal": ("band", decay.nominal, {"long_name": "nominal band frequency, Hz"}),
     }
+    if sup is not None:
+        coords["support"] = ("support", sup.x, _attrs("m", "rail seat along the rail"))
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(
         {

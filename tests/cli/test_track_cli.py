@@ -113,3 +113,21 @@ def test_the_documented_command_prints_the_documented_rates(tmp_path, monkeypatc
     for (name, values), column in zip(rows, (0, 1), strict=True):
         for band, value in zip(bands, values.split(" | "), strict=True):
             assert printed[band][column] == value.rstrip("*"), (name, band)
+
+
+def test_a_slab_track_gets_its_receptance_waves_and_decay_without_support_forces(tmp_path):
+    # the slab couples its fasteners' supports: the support forces are not modelled yet,
+    # the rest of the outputs are (they need only receptance and propagation_constants)
+    case = tmp_path / "slab.toml"
+    case.write_text('preset = "floating_slab_metro"\n')
+    out = tmp_path / "out"
+    assert main(["track", str(case), "-o", str(out), *FAST, "--no-plots"]) == 0
+    ds = load_netcdf(out / "track.nc")
+    track = _track(load_case(case))
+    f = ds["frequency"].values
+    want = track.receptance(f, [ds.attrs["load_position_m"]], ds["position"].values)[:, :, 0]
+    np.testing.assert_allclose(ds["receptance"].values, want, rtol=1e-13)
+    assert "support" not in ds.dims
+    assert "foundation_force" not in ds
+    assert np.isfinite(ds["decay_rate"].values).all()
+    assert ds.sizes["wave"] == track.propagation_constants(f[:1]).shape[1]

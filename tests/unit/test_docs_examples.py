@@ -12,13 +12,21 @@ import railvib.grid
 import railvib.solve
 import railvib.track.moving
 import railvib.track.periodic
+import railvib.track.slab
 
 ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
 
 
 @pytest.mark.parametrize(
-    "doc", ["README.md", "docs/user-guide.md", "docs/extending.md", "docs/moving-load.md"]
+    "doc",
+    [
+        "README.md",
+        "docs/user-guide.md",
+        "docs/extending.md",
+        "docs/moving-load.md",
+        "docs/slab-track.md",
+    ],
 )
 def test_python_examples_in_docs_run(doc, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
@@ -45,6 +53,7 @@ def test_readme_opens_with_the_two_commands():
         railvib.contact,
         railvib.track.periodic,
         railvib.track.moving,
+        railvib.track.slab,
         railvib.solve,
     ],
 )

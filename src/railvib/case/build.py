@@ -54,6 +54,12 @@ def build_spectrum(case: Case) -> SpatialSpectrum:
     return SPECTRA.from_dict(dict(case.irregularity), "irregularity")
 
 
+#: units of the ``[track]`` numbers given per rail (masses per rail seat, a slab's share of
+#: one rail): doubled in ``rail_pair`` mode with the rail; lengths, counts, loss factors and
+#: temperatures are not
+PER_RAIL_UNITS = ("kg", "kg/m", "N m^2", "N/m", "N m/rad")
+
+
 def _rail_multiplier(case: Case) -> float:
     return 2.0 if case.rail_model == "rail_pair" else 1.0
 
@@ -70,8 +76,9 @@ def build_track(case: Case) -> PeriodicTrack:
     -------
     PeriodicTrack
         The periodic track of the case's ``track.model`` in SI units; in ``rail_pair``
-        mode EI, m, kappa G A, rho I, the pad (and ballast, subgrade) stiffness and the
-        masses per rail seat are doubled.
+        mode EI, m, kappa G A, rho I, the pad (and ballast, subgrade, foundation, bearing)
+        stiffness and the quantities per rail (:data:`PER_RAIL_UNITS`: masses per rail
+        seat, a slab's EI, mass and joint stiffnesses) are doubled.
     """
     n = _rail_multiplier(case)
     rail = Rail(**case.track.rail.model_dump())
@@ -98,8 +105,8 @@ def build_track(case: Case) -> PeriodicTrack:
         if p.kind == "member" and p.key != "pad" and given.get(p.key) is not None:
             layer = PADS.from_dict(dict(given[p.key]), f"track.{p.key}")
             values[p.name] = layer if n == 1.0 else ScaledPad(layer, n)
-        elif p.unit == "kg" and p.name in values:
-            values[p.name] = n * values[p.name]  # a mass per rail seat: both rails' seats
+        elif p.kind == "number" and p.unit in PER_RAIL_UNITS and p.name in values:
+            values[p.name] = n * values[p.name]  # a quantity per rail: both rails' share
     track = member.build(**values)
     assert isinstance(track, PeriodicTrack), "every track model is a periodic track"
     return track

@@ -81,7 +81,9 @@ def case_header(case: Case) -> list[str]:
     """
     v = kmh_to_ms(case.speed_kmh)
     freq = case.frequency
-    temperature = f"pad temperature {case.track.pad_temperature_c:g} degC"
+    t = case.track.pad_temperature_c
+    # a [track] naming a model replaces the preset's, and may leave the temperature out
+    temperature = "pad temperature not given" if t is None else f"pad temperature {t:g} degC"
     if not build_pad(case).temperature_dependent:
         temperature += " (this pad model does not depend on it)"
     if freq.spacing == "linear":

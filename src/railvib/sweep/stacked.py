@@ -27,6 +27,7 @@ from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
 from railvib.stack import dot, put, solve, to_numpy
+from railvib.track.slab import SlabTrack
 from railvib.track.stacked import receptance_entries, stacked_waves
 from railvib.vehicle.assembly import WheelCondensation
 
@@ -254,6 +255,8 @@ def _frf_block(
 ) -> tuple[Any, Any, Any]:
     """:func:`frf_stack` of one block of cases."""
     track = system.track
+    if isinstance(track, SlabTrack):  # its slab couples the fasteners: no pad stiffness says it
+        raise CaseError("track.model", type(track).__name__, "a track on independent supports")
     if track.rail.is_timoshenko:
         raise CaseError("track.rail.shear_stiffness", track.rail.shear_stiffness, "an Euler rail")
     n_case = speeds.size

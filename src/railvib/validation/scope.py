@@ -16,7 +16,9 @@ from railvib.pads.base import PadModel
 from railvib.pads.scaled import ScaledPad
 from railvib.pads.simple import SpringDamper
 from railvib.pads.tts import TemperatureShifted
+from railvib.track.base import TRACKS
 from railvib.track.periodic import Rail
+from railvib.track.slab import SlabTrack
 
 __all__ = ["check_pad", "check_rail", "check_scope", "pad_model_name", "viscous_pad"]
 
@@ -128,7 +130,16 @@ def check_scope(system: CoupledSystem) -> None:
     CaseError
         ``track.rail.shear_stiffness`` for a Timoshenko rail, ``track.rail.loss_factor``
         for a rail loss factor, ``track.pad.model`` (the user's model name) for a pad
-        that is not viscous.
+        that is not viscous, ``track.model`` for a slab track (the time-domain model
+        has no slab DOFs).
     """
+    if isinstance(system.track, SlabTrack):
+        raise CaseError(
+            "track.model",
+            next((m.name for m in TRACKS if m.cls is type(system.track)), "a slab track"),
+            "rigid_base for railvib validate: its finite-track and time-domain reference "
+            "models have no slab DOFs (the slab tracks are validated against "
+            "railvib.validation.finite_slab.FiniteSlabTrack in the test suite)",
+        )
     check_rail(system.track.rail, time_domain=True)
     check_pad(system.track.pad)

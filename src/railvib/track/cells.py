@@ -1,0 +1,403 @@
+"""A general periodic cell of beams and springs, solved as an infinite chain by doubling.
+
+A cell of length ``L`` (the period) holds beam spans (the rail and, for a slab track, the
+slab beam), each described by its exact dynamic stiffness (:func:`span_stiffness`), and
+complex springs between nodes or from a node to the ground (railpads, slab bearings,
+slab joints). Every node carries a displacement ``w`` (down) and a rotation ``theta =
+dw/dx``. The cell's interior DOFs are condensed onto its ``m`` boundary DOFs on each
+side: ``f_l = A q_l + B q_r``, ``f_r = C q_l + E q_r`` (forces on the cell).
+
+The infinite chain of cells is solved through its semi-infinite dynamic stiffnesses,
+found by the doubling (cyclic reduction) of the cell: two cells joined at a node and
+the node condensed form a cell twice as long,
+
+    S = E_k + A_k,  A_k+1 = A_k - B_k S^-1 C_k,  B_k+1 = -B_k S^-1 B_k,
+    C_k+1 = -C_k S^-1 C_k,  E_k+1 = E_k - C_k S^-1 B_k,
+
+so after ``k`` steps the blocks describe ``2^k`` cells; ``B_k`` and ``C_k`` shrink as
+``mu^(2^k)`` of the least-attenuated wave and ``A_k``, ``E_k`` converge to the dynamic
+stiffness ``P_r`` of the cells to the right of a node and ``P_l`` of the cells to its
+left (a spring at a boundary node is counted by the one cell that holds it). This is the
+structure-preserving doubling algorithm of the palindromic eigenproblem
+``(mu^-1 C + A + E + mu B) q = 0`` of the Bloch waves (Chu, Hwang, Lin and Wu, "Vibration of
+fast trains, palindromic eigenvalue problems and structure-preserving doubling
+algorithms", J. Comput. Appl. Math. 219, 2008): it works with the cell's stiffness
+blocks only, never with the cell's transfer matrix (whose entries reach
+``exp(beta L)``, 1e21 for a 5 m slab at 5 kHz), and picks the decaying (in the limit of
+vanishing loss, power-carrying outward) waves by construction. The waves' propagation
+operator ``q_n+1 = R q_n``, ``R = -(E + P_r)^-1 C``, has the right-going propagation
+constants ``mu`` (``|mu| < 1``) as its eigenvalues; ``q_n-1 = L q_n``,
+``L = -(P_l + A)^-1 B``, carries the left-going ones.
+
+A point load in a cell is solved in that cell with the two semi-infinite chains attached
+at its ends; the response in another cell follows from its boundary displacements
+(``R^k`` or ``L^k`` of the loaded cell's) through the cell's interior response to them.
+Everything is stacked over frequency (no loop over frequencies). Every dense solve is
+equilibrated (rows and columns scaled by the square root of the diagonal), so that a
+slab thousands of times stiffer than the rail costs no digits.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from railvib.errors import SolverWarning
+from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_transfer
+
+__all__ = [
+    "CLOSED_FORM_WAVENUMBER",
+    "MAX_DOUBLINGS",
+    "Cell",
+    "CellWaves",
+    "cell_receptance",
+    "cell_waves",
+    "span_stiffness",
+]
+
+#: ``|beta L|`` of a span from which its dynamic stiffness is taken from the closed form
+#: (below it, from the pole-free series transfer matrix): the closed form loses
+#: ``1 / |beta L|^4`` of its digits to ``1 - cos cosh`` (1/16 here), the transfer route
+#: ``cosh(beta L)^2`` (14 here)
+CLOSED_FORM_WAVENUMBER = 2.0
+
+#: doublings at most: ``2^80`` cells, beyond the decay of any wave with the vanishing
+#: loss factor ``1e-12`` of an undamped beam
+MAX_DOUBLINGS = 80
+
+#: ``max|B_k| / max|A_k|`` (equilibrated) below which the doubling has converged: the
+#: next step changes ``A_k`` by its square, 1e-20
+CONVERGED = 1e-10
+
+
+def span_stiffness(
+    beta4: NDArray[np.complex128],
+    length: float,
+    bending_stiffness: complex,
+    shear_flexibility: complex | None = None,
+    rotary: NDArray[np.complex128] | None = None,
+) -> NDArray[np.complex128]:
+    """Exact dynamic stiffness of a uniform beam span in SI units, ``(n_freq, 4, 4)``.
+
+    DOFs ``(w_a, theta_a, w_b, theta_b)`` (m, rad), end forces and moments on the span
+    (N, N m). An Euler span with ``|beta L| >= CLOSED_FORM_WAVENUMBER`` uses the closed
+    form (:func:`railvib.track.beam.dynamic_stiffness`); a shorter one, and every
+    Timoshenko span, inverts blocks of the pole-free transfer matrix.
+
+    Parameters
+    ----------
+    beta4 : numpy.ndarray
+        ``(m omega^2 - k_f) L^4 / EI*`` per frequency (dimensionless), ``(n_freq,)``;
+        ``k_f`` is an elastic foundation per unit length (N/m^2), 0 for none.
+    length : float
+        Span length L in m (> 0).
+    bending_stiffness : complex
+        ``EI*`` in N m^2.
+    shear_flexibility : complex, optional
+        ``EI* / (kappa G A* L^2)`` of a Timoshenko span (dimensionless).
+    rotary : numpy.ndarray, optional
+        ``rho_I omega^2 L^2 / EI*`` of a Timoshenko span (dimensionless), ``(n_freq,)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex dynamic stiffness, ``(n_freq, 4, 4)``.
+    """
+    beta4 = np.asarray(beta4, dtype=np.complex128)
+    scale = np.array([1.0, length, 1.0, length])
+    out = np.empty(beta4.shape + (4, 4), dtype=np.complex128)
+    closed = np.abs(beta4) >= CLOSED_FORM_WAVENUMBER**4
+    if shear_flexibility is not None:
+        closed[:] = False
+    if np.any(closed):
+        out[closed] = dynamic_stiffness(beta4[closed], 1.0)
+    series = ~closed
+    if np.any(series):
+        if shear_flexibility is None:
+            t = field_transfer(beta4[series], 1.0)
+        else:
+            assert rotary is not None, "a Timoshenko span has its rotary term"
+            t = timoshenko_transfer(beta4[series], shear_flexibility, rotary[series], 1.0)
+        out[series] = _stiffness_from_transfer(t)
+    return np.asarray(
+        out * (scale[:, None] * scale[None, :]) * (bending_stiffness / length**3),
+        dtype=np.complex128,
+    )
+
+
+def _stiffness_from_transfer(t: NDArray[np.complex128]) -> NDArray[np.complex128]:
+    """Dimensionless span stiffness (EI = L = 1) from its state transfer matrix.
+
+    The state ``(w, psi, psi', v)`` maps to ``u = (w, theta) = (y0, y1)`` and ``p =
+    (shear, moment) = (y3, -y2)``, the force across a section on the part to its right;
+    with ``p_b = s21 u_a + s22 p_a``, ``u_b = s11 u_a + s12 p_a`` the forces on the span
+    are ``f_a = p_a`` and ``f_b = -p_b``.
+    """
+    c = np.zeros((4, 4))
+    c[0, 0] = c[1, 1] = c[2, 3] = 1.0
+    c[3, 2] = -1.0
+    s = c @ t @ np.linalg.inv(c)
+    k_ab = np.linalg.inv(s[:, :2, 2:])
+    k_aa = -k_ab @ s[:, :2, :2]
+    k_bb = -s[:, 2:, 2:] @ k_ab
+    k_ba = -s[:, 2:, :2] - k_bb @ s[:, :2, :2]
+    top = np.concatenate([k_aa, k_ab], axis=2)
+    return np.concatenate([top, np.concatenate([k_ba, k_bb], axis=2)], axis=1)
+
+
+@dataclass(frozen=True, eq=False)
+class Cell:
+    """One period of a track: beam spans and springs between nodes, at every frequency.
+
+    Parameters
+    ----------
+    period : float
+        Cell length L in m.
+    n_nodes : int
+        Number of nodes; node ``k`` has DOFs ``2k`` (w, m) and ``2k+1`` (theta, rad).
+    spans : list of (int, int, numpy.ndarray)
+        ``(node_a, node_b, K)``: a beam span's dynamic stiffness ``(n_freq, 4, 4)`` in SI
+        units (:func:`span_stiffness`) between the two nodes.
+    springs : list of (int, int or None, int, numpy.ndarray)
+        ``(node_a, node_b, dof, k)``: a complex spring ``(n_freq,)`` on DOF `dof` (0: w in
+        N/m, 1: theta in N m/rad) between two nodes, or from `node_a` to the ground
+        (`node_b` None).
+    left, right : tuple of int
+        The boundary nodes at ``x = 0`` and at ``x = L``, in matching order (the right
+        ones are the left ones of the next cell).
+    """
+
+    period: float
+    n_nodes: int
+    spans: list[tuple[int, int, NDArray[np.complex128]]]
+    springs: list[tuple[int, int | None, int, NDArray[np.complex128]]]
+    left: tuple[int, ...]
+    right: tuple[int, ...]
+
+    @property
+    def boundary(self) -> NDArray[np.intp]:
+        """DOF indices of the left then the right boundary, ``(2 m,)``."""
+        nodes = np.array(self.left + self.right)
+        return np.stack([2 * nodes, 2 * nodes + 1], axis=1).ravel()
+
+    @property
+    def interior(self) -> NDArray[np.intp]:
+        """DOF indices of the interior (condensed), ascending."""
+        return np.setdiff1d(np.arange(2 * self.n_nodes), self.boundary)
+
+    def stiffness(self) -> NDArray[np.complex128]:
+        """The assembled cell dynamic stiffness, ``(n_freq, 2 n_nodes, 2 n_nodes)``, SI."""
+        n_freq = self.spans[0][2].shape[0]
+        n = 2 * self.n_nodes
+        k = np.zeros((n_freq, n, n), dtype=np.complex128)
+        for a, b, block in self.spans:
+            dofs = np.array([2 * a, 2 * a + 1, 2 * b, 2 * b + 1])
+            k[:, dofs[:, None], dofs[None, :]] += block
+        for a, other, dof, value in self.springs:
+            i = 2 * a + dof
+            k[:, i, i] += value
+            if other is not None:
+                j = 2 * other + dof
+                k[:, j, j] += value
+                k[:, i, j] -= value
+                k[:, j, i] -= value
+        return k
+
+
+def _solve(k: NDArray[np.complex128], rhs: NDArray[np.complex128]) -> NDArray[np.complex128]:
+    """``k^-1 rhs`` stacked, with rows and columns scaled by ``|diag k|^(-1/2)``."""
+    s = 1.0 / np.sqrt(np.abs(np.einsum("fii->fi", k)))
+    scaled = k * s[:, :, None]
+    scaled *= s[:, None, :]
+    out = np.linalg.solve(scaled, rhs * s[:, :, None])
+    out *= s[:, :, None]
+    return np.asarray(out)
+
+
+@dataclass(frozen=True, eq=False)
+class CellWaves:
+    """The infinite chain of one cell, at each frequency (SI units).
+
+    Attributes
+    ----------
+    cell : Cell
+        The cell.
+    stiffness : numpy.ndarray
+        Its assembled dynamic stiffness, ``(n_freq, n_dof, n_dof)``.
+    blocks : tuple of numpy.ndarray
+        ``(A, B, C, E)``, the condensed cell, each ``(n_freq, m, m)``.
+    right_chain, left_chain : numpy.ndarray
+        ``P_r`` and ``P_l``, ``(n_freq, m, m)``: dynamic stiffness of the cells to the
+        right of a node and of those to its left.
+    right_step, left_step : numpy.ndarray
+        ``R`` (``q_n+1 = R q_n``) and ``L`` (``q_n-1 = L q_n``), ``(n_freq, m, m)``.
+    interior_response : numpy.ndarray
+        Interior DOFs per unit boundary displacements of an unloaded cell,
+        ``(n_freq, n_interior, 2 m)``.
+    """
+
+    cell: Cell
+    stiffness: NDArray[np.complex128]
+    blocks: tuple[NDArray[np.complex128], ...]
+    right_chain: NDArray[np.complex128]
+    left_chain: NDArray[np.complex128]
+    right_step: NDArray[np.complex128]
+    left_step: NDArray[np.complex128]
+    interior_response: NDArray[np.complex128]
+
+    def propagation_constants(self) -> NDArray[np.complex128]:
+        """``mu`` of the right-going waves per period, ``(n_freq, m)``, least attenuated first."""
+        mu = np.linalg.eigvals(self.right_step)
+        order = np.argsort(-np.abs(mu), axis=1, kind="stable")
+        return np.asarray(np.take_along_axis(mu, order, axis=1), dtype=np.complex128)
+
+
+def cell_waves(cell: Cell) -> CellWaves:
+    """Condense `cell` onto its boundary and solve its infinite chain by doubling.
+
+    Parameters
+    ----------
+    cell : Cell
+        The period (springs and spans at every frequency).
+
+    Returns
+    -------
+    CellWaves
+        The chain's semi-infinite stiffnesses, wave steps and the cell's interior response.
+
+    Warns
+    -----
+    SolverWarning
+        If the doubling has not converged after :data:`MAX_DOUBLINGS` steps at some
+        frequency (a wave that does not decay over ``2^80`` cells).
+    """
+    k = cell.stiffness()
+    bnd, inner = cell.boundary, cell.interior
+    k_bb = k[:, bnd[:, None], bnd[None, :]]
+    if inner.size:
+        k_ib = k[:, inner[:, None], bnd[None, :]]
+        k_bi = k[:, bnd[:, None], inner[None, :]]
+        response = -_solve(k[:, inner[:, None], inner[None, :]], k_ib)
+        k_bb = k_bb + k_bi @ response
+    else:
+        response = np.zeros((k.shape[0], 0, bnd.size), dtype=np.complex128)
+    m = bnd.size // 2
+    a, b, c, e = k_bb[:, :m, :m], k_bb[:, :m, m:], k_bb[:, m:, :m], k_bb[:, m:, m:]
+    p_r, p_l = _doubling(a, b, c, e)
+    r_step = -_solve(e + p_r, c)
+    l_step = -_solve(p_l + a, b)
+    return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step, response)
+
+
+def _doubling(
+    a: NDArray[np.complex128],
+    b: NDArray[np.complex128],
+    c: NDArray[np.complex128],
+    e: NDArray[np.complex128],
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """``(P_r, P_l)``: the limits of ``A_k`` and ``E_k`` of the doubling (module docstring).
+
+    The blocks are equilibrated by the boundary DOFs' diagonal (the same DOFs on both
+    sides), and each frequency leaves the iteration once converged.
+    """
+    s = 1.0 / np.sqrt(np.abs(np.einsum("fii->fi", a + e)))
+    scale = s[:, :, None] * s[:, None, :]
+    a, b, c, e = (x * scale for x in (a, b, c, e))
+    p_r, p_l = a.copy(), e.copy()
+    active = np.arange(a.shape[0])  # the frequencies still iterated, held compacted
+    m = a.shape[1]
+    for _ in range(MAX_DOUBLINGS):
+        x = np.linalg.solve(e + a, np.concatenate([c, b], axis=2))
+        x_c, x_b = x[:, :, :m], x[:, :, m:]
+        a, e, b, c = a - b @ x_c, e - c @ x_b, -b @ x_b, -c @ x_c
+        size = np.maximum(np.abs(a).max(axis=(1, 2)), np.abs(e).max(axis=(1, 2)))
+        coupling = np.maximum(np.abs(b).max(axis=(1, 2)), np.abs(c).max(axis=(1, 2)))
+        done = coupling <= CONVERGED * size
+        p_r[active[done]], p_l[active[done]] = a[done], e[done]
+        if np.all(done):
+            break
+        keep = ~done
+        active, a, b, c, e = active[keep], a[keep], b[keep], c[keep], e[keep]
+    else:
+        p_r[active], p_l[active] = a, e
+        warnings.warn(
+            f"{active.size} frequencies: the cell's waves did not decay over 2^{MAX_DOUBLINGS} "
+            "cells; the semi-infinite track stiffness there is not converged",
+            SolverWarning,
+            stacklevel=3,
+        )
+    return p_r / scale, p_l / scale
+
+
+def cell_receptance(
+    waves: CellWaves,
+    load: tuple[NDArray[np.int64], NDArray[np.intp]],
+    obs: tuple[NDArray[np.int64], NDArray[np.intp]],
+) -> NDArray[np.complex128]:
+    """Displacement of DOFs per unit force on DOFs of the chain, ``(n_freq, n_obs, n_load)``.
+
+    Parameters
+    ----------
+    waves : CellWaves
+        The chain (:func:`cell_waves`).
+    load, obs : (numpy.ndarray, numpy.ndarray)
+        For each load (observation point): the index of its cell and its DOF in the cell
+        (a DOF of the cell's left boundary stands for the cell's left node).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptance in SI units (m/N for displacement DOFs).
+    """
+    cell = waves.cell
+    k = waves.stiffness.copy()
+    bnd, inner = cell.boundary, cell.interior
+    m = bnd.size // 2
+    left, right = bnd[:m], bnd[m:]
+    k[:, left[:, None], left[None, :]] += waves.left_chain
+    k[:, right[:, None], right[None, :]] += waves.right_chain
+    load_cell, load_dof = load
+    obs_cell, obs_dof = obs
+    n_freq = k.shape[0]
+    rhs = np.zeros((n_freq, k.shape[1], load_dof.size), dtype=np.complex128)
+    rhs[:, load_dof, np.arange(load_dof.size)] = 1.0
+    u = _solve(k, rhs)  # (n_freq, n_dof, n_load): the loaded cell with both chains
+    # each observation DOF's displacement per unit boundary displacements of its cell
+    rows = np.zeros((n_freq, obs_dof.size, 2 * m), dtype=np.complex128)
+    for i, dof in enumerate(obs_dof):
+        at_bnd = np.flatnonzero(bnd == dof)
+        if at_bnd.size:
+            rows[:, i, at_bnd[0]] = 1.0
+        else:
+            rows[:, i] = waves.interior_response[:, int(np.flatnonzero(inner == dof)[0])]
+    offsets = obs_cell[:, None] - load_cell[None, :]
+    # boundary displacements of the cells n = 1, 2, ... to the right of the loaded one
+    # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end)
+    right_q = _propagate(waves.right_step, u[:, right, :], int(max(offsets.max(initial=0), 0)))
+    left_q = _propagate(waves.left_step, u[:, left, :], int(max(-offsets.min(initial=0), 0)))
+    out = np.empty((n_freq, obs_dof.size, load_dof.size), dtype=np.complex128)
+    for i in range(obs_dof.size):
+        for j in range(load_dof.size):
+            n = int(offsets[i, j])
+            if n == 0:
+                out[:, i, j] = u[:, obs_dof[i], j]
+                continue
+            if n > 0:  # the observed cell's ends: n - 1 and n steps from the loaded cell's
+                q = np.concatenate([right_q[n - 1][:, :, j], right_q[n][:, :, j]], axis=1)
+            else:
+                q = np.concatenate([left_q[-n][:, :, j], left_q[-n - 1][:, :, j]], axis=1)
+            out[:, i, j] = np.einsum("fa,fa->f", rows[:, i], q)
+    return out
+
+
+def _propagate(
+    step: NDArray[np.complex128], q: NDArray[np.complex128], n: int
+) -> list[NDArray[np.complex128]]:
+    """``[q, step q, ..., step^n q]`` for the columns of `q` ``(n_freq, m, n_load)``."""
+    out = [q]
+    for _ in range(n):
+        out.append(step @ out[-1])
+    return out

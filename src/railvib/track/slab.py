@@ -1,0 +1,847 @@
+"""Slab tracks: the rail on pads on a floating (continuous) slab or on unit (discontinuous) slabs.
+
+Both are periodic structures of two beams, solved by the general cell solver
+(:mod:`railvib.track.cells`):
+
+* ``floating_slab`` (:class:`FloatingSlabTrack`): the rail and a continuous slab beam
+  (``EI_s``, ``m_s``) coupled by the railpads at every fastener ``x = n d``; the slab on a
+  continuous elastic foundation ``k_f`` per unit length (folded exactly into the slab
+  span's wavenumber, ``EI_s* beta^4 = m_s omega^2 - k_f``) or on discrete bearings at
+  every ``bearing_spacing_fasteners``-th fastener. The cell is one fastener spacing (or
+  one bearing spacing) and holds both beams' states: 8 states, 4 waves each way.
+* ``unit_slab`` (:class:`UnitSlabTrack`): slabs of length ``L_s`` with ``n`` fasteners
+  each, at ``d`` apart and centred on the slab, joints at ``x = k L_s``. A free joint
+  leaves each slab inside its cell (the rail alone crosses the cell boundary: 4 states);
+  a joint with a shear and/or bending stiffness couples the slab ends (8 states). The
+  period is the slab.
+
+The rail is an Euler or a Timoshenko beam, the slab an Euler beam; every value is per
+rail (half of a slab carrying two rails; ``rail_pair`` doubles it with the rail). Pads,
+foundation and bearings take any pad model (temperature-dependent ones at
+``pad_temperature_c``) and are refused where they are not passive (``Im K < 0``) on the
+grid. An undamped rail or slab is solved with the small loss factor
+:data:`VANISHING_LOSS_FACTOR` (1e-9): the doubling needs every wave to decay, and with the
+rigid-base track's 1e-12 the doubling of a lossless slab track overflows near its band edges
+(measured: 71 of 3000 frequencies near the slab's cut-on).
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.errors import CaseError, NonFiniteResult
+from railvib.pads.base import PADS, PadModel
+from railvib.registry import Parameter, check_value
+from railvib.track.base import TRACKS, SupportResponse
+from railvib.track.cells import Cell, cell_receptance, cell_waves, span_stiffness
+from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail, TrackWaves
+
+__all__ = [
+    "FLOATING_SLAB_PARAMETERS",
+    "UNIT_SLAB_PARAMETERS",
+    "VANISHING_LOSS_FACTOR",
+    "FloatingSlabTrack",
+    "SlabTrack",
+    "UnitSlabTrack",
+]
+
+#: the smallest loss factor of the rail and the slab (an undamped beam is solved at it): the
+#: doubling needs ``2^k`` cells to damp a wave, so that no frequency is left with a wave that
+#: barely decays over the ``2^80`` cells of :data:`railvib.track.cells.MAX_DOUBLINGS`; it
+#: changes a lossless track's receptance by ~1e-9 away from its resonances
+VANISHING_LOSS_FACTOR = 1e-9
+
+#: largest ``|beta| L`` of a Timoshenko rail span: its stiffness comes from the transfer
+#: matrix, whose inversion loses ``exp(|beta| L)`` ulp (1.6e5 here: 4e-11)
+MAX_TIMOSHENKO_SPAN_WAVENUMBER = 12.0
+
+#: largest ``|beta| L`` of an Euler span (closed form: cosh stays far below overflow)
+MAX_EULER_SPAN_WAVENUMBER = 300.0
+
+#: complex entries of the cell matrices of one frequency block (16 MB): a block's working
+#: set stays in the cache instead of streaming (n_freq, n_dof, n_dof) arrays through memory
+CELL_BLOCK_ENTRIES = 2**20
+
+#: positions closer than this fraction of the period are one node
+_MERGE = 1e-9
+
+#: keys shared by the slab tracks (per rail: half of a slab under two rails)
+_SLAB = (
+    # a 0.3 m x 3 m concrete slab: 2.4e8 N m^2 and 2250 kg/m per track, half per rail; the
+    # upper bounds are far beyond any slab, so that the rigid-slab limit can be computed
+    Parameter(
+        "slab_bending_stiffness",
+        "N m^2",
+        "bending stiffness EI_s of the slab beam per rail (half the slab of a track)",
+        gt=0.0,
+        le=1e22,
+        typical=(2e7, 1e9),
+        log=True,
+    ),
+    Parameter(
+        "slab_mass_per_length",
+        "kg/m",
+        "mass per unit length of the slab beam per rail (half the slab of a track)",
+        gt=0.0,
+        le=1e18,
+        typical=(300.0, 3000.0),
+    ),
+    Parameter(
+        "slab_loss_factor",
+        "-",
+        "loss factor eta_s of the slab beam (EI_s -> EI_s (1 + i eta_s))",
+        default=0.0,
+        ge=0.0,
+        le=1.0,
+    ),
+    Parameter(
+        "foundation",
+        "N/m^2",
+        "continuous slab foundation: a pad model read as stiffness per metre of slab (per rail)",
+        "member",
+        default=None,
+        family=PADS,
+    ),
+    Parameter(
+        "bearing",
+        "N/m",
+        "discrete slab bearing (instead of a foundation): a pad model, one bearing per rail",
+        "member",
+        default=None,
+        family=PADS,
+    ),
+)
+
+#: keys of the ``[track]`` table of the floating slab track
+FLOATING_SLAB_PARAMETERS = (
+    *RIGID_BASE_PARAMETERS,
+    *_SLAB,
+    Parameter(
+        "bearing_spacing_fasteners",
+        "",
+        "bearings under every n-th fastener (with bearing): the cell is n fastener spacings",
+        "integer",
+        default=1,
+        ge=1,
+        le=50,
+    ),
+)
+
+#: keys of the ``[track]`` table of the unit slab track
+UNIT_SLAB_PARAMETERS = (
+    *RIGID_BASE_PARAMETERS,
+    *_SLAB,
+    Parameter(
+        "slab_length_m",
+        "m",
+        "length L_s of one slab (the period); joints at x = k L_s",
+        gt=0.0,
+        le=100.0,
+        typical=(3.0, 25.0),
+    ),
+    Parameter(
+        "fasteners_per_slab",
+        "",
+        "fasteners on each slab, sleeper_spacing apart and centred on it",
+        "integer",
+        ge=1,
+        le=500,
+    ),
+    Parameter(
+        "joint_shear_stiffness",
+        "N/m",
+        "shear stiffness of the joint between slabs (omitted with the bending one: free joints)",
+        default=None,
+        ge=0.0,
+        le=1e15,
+    ),
+    Parameter(
+        "joint_bending_stiffness",
+        "N m/rad",
+        "bending stiffness of the joint between slabs (omitted with the shear one: free joints)",
+        default=None,
+        ge=0.0,
+        le=1e15,
+    ),
+)
+
+_BY_KEY = {p.key: p for p in (*FLOATING_SLAB_PARAMETERS, *UNIT_SLAB_PARAMETERS)}
+
+
+@dataclass(frozen=True)
+class SlabTrack(PeriodicTrack):
+    """Rail on railpads on a slab beam on a foundation or bearings (base of the slab tracks).
+
+    Parameters
+    ----------
+    rail : Rail
+        The rail beam.
+    pad : PadModel
+        Railpad model, complex stiffness per fastener in N/m.
+    sleeper_spacing : float
+        Fastener spacing d in m (> 0).
+    pad_temperature : float, optional
+        Temperature in degrees Celsius, passed to the pad, foundation and bearing models.
+    slab_bending_stiffness : float
+        EI_s of the slab beam per rail, N m^2.
+    slab_mass_per_length : float
+        m_s of the slab beam per rail, kg/m.
+    slab_loss_factor : float
+        eta_s of the slab (>= 0).
+    foundation : PadModel, optional
+        Continuous foundation, complex stiffness per metre of slab, N/m^2.
+    bearing : PadModel, optional
+        Discrete bearing, complex stiffness per bearing, N/m (instead of `foundation`).
+    """
+
+    slab_bending_stiffness: float = 0.0
+    slab_mass_per_length: float = 0.0
+    slab_loss_factor: float = 0.0
+    foundation: PadModel | None = None
+    bearing: PadModel | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        for key in ("slab_bending_stiffness", "slab_mass_per_length", "slab_loss_factor"):
+            check_value(_BY_KEY[key], getattr(self, key), f"track.{key}")
+        for key in ("foundation", "bearing"):
+            model = getattr(self, key)
+            if model is not None and not isinstance(model, PadModel):
+                raise CaseError(f"track.{key}", model, "a PadModel")
+        if (self.foundation is None) == (self.bearing is None):
+            raise CaseError(
+                "track.foundation",
+                "given with track.bearing" if self.foundation is not None else "<missing>",
+                "exactly one of [track.foundation] (continuous, N/m per m) and "
+                "[track.bearing] (discrete, N/m)",
+            )
+
+    # -- geometry, by the subclasses ------------------------------------------------------
+    @property
+    @abstractmethod
+    def period(self) -> float:
+        """Length of the periodic cell, m."""
+
+    @abstractmethod
+    def _fasteners(self) -> NDArray[np.float64]:
+        """Fastener positions in the cell ``[0, period)``, m."""
+
+    @abstractmethod
+    def _slab_nodes(self) -> NDArray[np.float64]:
+        """Slab node positions in the cell (fasteners and slab ends), m."""
+
+    @abstractmethod
+    def _bearings(self) -> NDArray[np.float64]:
+        """Bearing positions in the cell, m (with :attr:`bearing`)."""
+
+    def _joints(self) -> tuple[float, float] | None:
+        """``(shear N/m, bending N m/rad)`` of a joint; None: a continuous slab or free joints."""
+        return None
+
+    # -- checks -----------------------------------------------------------------------------
+    def _rail_spans(self, extra: NDArray[np.float64]) -> NDArray[np.float64]:
+        return _merged(np.concatenate([[0.0, self.period], self._fasteners(), extra]), self.period)
+
+    def layer_stiffness(self, f: ArrayLike) -> dict[str, NDArray[np.complex128]]:
+        """The pad and the foundation or bearing stiffness, checked finite and passive.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+
+        Returns
+        -------
+        dict
+            ``{"pad": K_p (N/m), "foundation": k_f (N/m^2)}`` or ``{"pad", "bearing"
+            (N/m)}``, each ``(n_freq,)``.
+
+        Raises
+        ------
+        CaseError
+            A model has ``Im K < 0`` or is not finite at a frequency of the grid, named
+            ``track.<layer>``.
+        """
+        f = np.asarray(f, dtype=float)
+        out: dict[str, NDArray[np.complex128]] = {}
+        models = {"pad": self.pad, "foundation": self.foundation, "bearing": self.bearing}
+        for name, model in models.items():
+            if model is None:
+                continue
+            k = np.asarray(model.stiffness(f, self.pad_temperature), dtype=np.complex128)
+            k = np.broadcast_to(k, f.shape).astype(np.complex128)
+            bad = ~(np.isfinite(k) & (k.imag >= -16 * np.finfo(float).eps * np.abs(k)))
+            if np.any(bad):
+                raise CaseError(
+                    f"track.{name}",
+                    f"K = {complex(k[bad][0]):.4g} at {float(f[bad][0]):.6g} Hz",
+                    "a passive, finite model: Im K >= 0 at every frequency of the grid",
+                )
+            out[name] = k
+        return out
+
+    def check_frequencies(self, f: ArrayLike) -> None:
+        """Refuse a grid the spans cannot be solved at, or where a support is not passive.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+
+        Raises
+        ------
+        CaseError
+            ``frequency.f_max`` beyond a span's limit (:data:`MAX_EULER_SPAN_WAVENUMBER`,
+            :data:`MAX_TIMOSHENKO_SPAN_WAVENUMBER`), or ``track.<layer>`` of a
+            non-passive pad, foundation or bearing.
+        """
+        super().check_frequencies(f)
+        f = np.atleast_1d(np.asarray(f, dtype=float))
+        layers = self.layer_stiffness(f)
+        omega2 = (2.0 * np.pi * f) ** 2
+        rail = self.rail
+        longest_rail = float(np.diff(self._rail_spans(np.zeros(0))).max())
+        beta_r = (rail.mass_per_length * omega2.max(initial=0.0) / rail.bending_stiffness) ** 0.25
+        limit = MAX_TIMOSHENKO_SPAN_WAVENUMBER if rail.is_timoshenko else MAX_EULER_SPAN_WAVENUMBER
+        longest_slab = float(np.diff(self._slab_nodes()).max(initial=0.0))
+        k_f = layers.get("foundation", np.zeros(1))
+        beta4_s = np.abs(self.slab_mass_per_length * omega2 - k_f) / self.slab_bending_stiffness
+        beta_s = float(beta4_s.max(initial=0.0)) ** 0.25
+        for beta, span, lim, what in (
+            (beta_r, longest_rail, limit, "rail"),
+            (beta_s, longest_slab, MAX_EULER_SPAN_WAVENUMBER, "slab"),
+        ):
+            if beta * span > lim:
+                raise CaseError(
+                    "frequency.f_max",
+                    float(f.max()),
+                    f"lower: the {what}'s wavenumber times its longest span ({span:.4g} m) "
+                    f"reaches {beta * span:.4g} there, beyond {lim:g} (Hz)",
+                )
+
+    def support_response(self, f: ArrayLike, x_load: float, n_supports: int) -> SupportResponse:
+        """Not modelled for a slab track yet: the slab couples the fasteners' supports.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies, Hz.
+        x_load : float
+            Position of the unit load along the rail, m.
+        n_supports : int
+            Rail seats on each side of the one nearest the load.
+
+        Raises
+        ------
+        NotImplementedError
+            Always (``railvib track`` then writes the receptances, waves and decay rate
+            without the support forces).
+        """
+        raise NotImplementedError(f"{type(self).__name__} does not give its support forces yet")
+
+    def support_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """Not defined for a slab track: the slab couples the fasteners (raises CaseError).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+
+        Raises
+        ------
+        CaseError
+            Always: the rigid-base wave methods (``waves``, ``cell_transfer``, ...) do not
+            apply; use :meth:`receptance` or :meth:`propagation_constants`.
+        """
+        raise CaseError(
+            "track.model",
+            type(self).__name__,
+            "a track whose fasteners have independent supports (the slab couples them): "
+            "use receptance or propagation_constants",
+        )
+
+    # -- the cell ---------------------------------------------------------------------------
+    def _cell(
+        self,
+        f: NDArray[np.float64],
+        extra: NDArray[np.float64],
+        layers: dict[str, NDArray[np.complex128]],
+    ) -> tuple[Cell, dict[float, int]]:
+        """The period at frequencies `f` with extra rail nodes at local positions `extra` (m).
+
+        `layers` holds :meth:`layer_stiffness` at `f`. Returns the cell and ``{local
+        position: node}`` of its rail nodes.
+        """
+        period = self.period
+        omega2 = (2.0 * np.pi * f) ** 2
+        rail_x = self._rail_spans(extra)
+        slab_x = self._slab_nodes()
+        n_rail = rail_x.size
+        joints = self._joints()
+        # nodes: the rail, then the slab; a continuous or jointed slab also has its right
+        # boundary node (the next slab's left end): its last node, at the period
+        slab_nodes = n_rail + np.arange(slab_x.size)
+        spans: list[tuple[int, int, NDArray[np.complex128]]] = []
+        rail = self.rail
+        ei_r = rail.bending_stiffness * (1.0 + 1j * max(rail.loss_factor, VANISHING_LOSS_FACTOR))
+        for i, length in enumerate(np.diff(rail_x)):
+            beta4 = rail.mass_per_length * omega2 * length**4 / ei_r
+            if rail.shear_stiffness is None:
+                k = span_stiffness(beta4, length, ei_r)
+            else:
+                kga = rail.shear_stiffness * (ei_r / rail.bending_stiffness)
+                rotary = rail.rotary_inertia * omega2 * length**2 / ei_r
+                k = span_stiffness(beta4, length, ei_r, ei_r / (kga * length**2), rotary)
+            spans.append((i, i + 1, k))
+        ei_s = self.slab_bending_stiffness * (
+            1.0 + 1j * max(self.slab_loss_factor, VANISHING_LOSS_FACTOR)
+        )
+        k_f = layers.get("foundation", 0.0)
+        slab_load = self.slab_mass_per_length * omega2 - k_f
+        for i, length in enumerate(np.diff(slab_x)):
+            if length <= _MERGE * period:
+                continue  # the joint: two slab ends at one place, joined by springs below
+            spans.append(
+                (
+                    int(slab_nodes[i]),
+                    int(slab_nodes[i + 1]),
+                    span_stiffness(slab_load * length**4 / ei_s, length, ei_s),
+                )
+            )
+        springs: list[tuple[int, int | None, int, NDArray[np.complex128]]] = []
+        for x in self._fasteners():
+            rail_node = int(np.argmin(np.abs(rail_x - x)))
+            springs.append((rail_node, int(slab_nodes[_at(slab_x, x)]), 0, layers["pad"]))
+        if self.bearing is not None:
+            for x in self._bearings():
+                springs.append((int(slab_nodes[_at(slab_x, x)]), None, 0, layers["bearing"]))
+        if joints is not None:
+            a, b = int(slab_nodes[-2]), int(slab_nodes[-1])
+            for dof, value in enumerate(joints):
+                springs.append((a, b, dof, np.full(f.shape, value, dtype=np.complex128)))
+        left: tuple[int, ...] = (0,)
+        right: tuple[int, ...] = (n_rail - 1,)
+        if self._slab_crosses():
+            left, right = (0, int(slab_nodes[0])), (n_rail - 1, int(slab_nodes[-1]))
+        cell = Cell(period, n_rail + slab_x.size, spans, springs, left, right)
+        return cell, {float(x): i for i, x in enumerate(rail_x)}
+
+    def _slab_crosses(self) -> bool:
+        """True if the slab's DOFs cross the cell boundary (continuous or jointed slab)."""
+        return True
+
+    def _locate(self, x: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+        """Cell index and local position in ``[0, period)`` of each rail position (m)."""
+        period = self.period
+        cell = np.floor(x / period)
+        local = x - cell * period
+        wrap = local > period * (1.0 - _MERGE)
+        cell = cell + wrap
+        local = np.where(wrap | (local < period * _MERGE), 0.0, local)
+        return cell.astype(np.int64), local
+
+    # -- public physics -----------------------------------------------------------------------
+    def receptance(
+        self, f: ArrayLike, x_load: ArrayLike, x_obs: ArrayLike, *, waves: TrackWaves | None = None
+    ) -> NDArray[np.complex128]:
+        """Rail receptance (vertical displacement per unit vertical force) between points.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, ``(n_freq,)`` (any order, repeats allowed).
+        x_load : array_like
+            Positions of the unit loads along the rail, m.
+        x_obs : array_like
+            Positions of the observation points, m.
+        waves : None
+            Not used by a slab track (its waves are those of its cell); must be None.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex receptance in m/N, ``(n_freq, n_obs, n_load)``.
+
+        Raises
+        ------
+        NonFiniteResult
+            Where a value is not finite (the doubling overflowed: no frequency of the
+            validation grids does with the loss factor :data:`VANISHING_LOSS_FACTOR`).
+        """
+        if waves is not None:
+            raise CaseError("waves", "given", "None for a slab track (its cell is solved here)")
+        f = _as_freq(f)
+        x_load = np.atleast_1d(np.asarray(x_load, dtype=float))
+        x_obs = np.atleast_1d(np.asarray(x_obs, dtype=float))
+        for name, x in (("x_load", x_load), ("x_obs", x_obs)):
+            if not np.all(np.isfinite(x)):
+                raise CaseError(name, list(x), "finite positions (m)")
+        self.check_frequencies(f)
+        load_cell, load_x = self._locate(x_load)
+        obs_cell, obs_x = self._locate(x_obs)
+        extra = np.concatenate([load_x, obs_x])
+        # the layers once over all of f (a stacked sweep's pads are given point by point)
+        layers = self.layer_stiffness(f)
+        out = np.empty((f.size, x_obs.size, x_load.size), dtype=np.complex128)
+        for block in self._blocks(f, extra):
+            part = {name: k[block] for name, k in layers.items()}
+            cell, rail_nodes = self._cell(f[block], extra, part)
+            load = (load_cell, _rail_dofs(rail_nodes, load_x))
+            obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
+            out[block] = cell_receptance(cell_waves(cell), load, obs)
+        bad = ~np.isfinite(out).all(axis=(1, 2))
+        if np.any(bad):
+            raise NonFiniteResult(
+                f"track receptance: {int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) "
+                "are not finite: the doubling did not resolve the slab track's waves there; "
+                "give track.rail.loss_factor or track.slab_loss_factor (e.g. 0.01)"
+            )
+        return out
+
+    def _blocks(self, f: NDArray[np.float64], extra: NDArray[np.float64]) -> list[slice]:
+        """Frequency blocks whose cell matrices (``n_dof^2`` each) fill about 16 MB."""
+        n_dof = 2 * (self._rail_spans(extra).size + self._slab_nodes().size)
+        size = max(64, CELL_BLOCK_ENTRIES // n_dof**2)
+        return [slice(i, i + size) for i in range(0, f.size, size)]
+
+    def propagation_constants(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """Propagation constants ``mu = exp(-gamma L)`` of the right-going waves per period.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, ``(n_freq,)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n_freq, n_waves)``, ``|mu| <= 1``, least attenuated first; ``n_waves`` is the
+            number of boundary DOFs per side: 4 with the slab crossing the cell boundary,
+            2 for unit slabs with free joints.
+        """
+        f = _as_freq(f)
+        self.check_frequencies(f)
+        layers = self.layer_stiffness(f)
+        none = np.zeros(0)
+        parts = [
+            cell_waves(
+                self._cell(f[block], none, {k: v[block] for k, v in layers.items()})[0]
+            ).propagation_constants()
+            for block in self._blocks(f, none)
+        ]
+        return np.concatenate(parts)
+
+
+@dataclass(frozen=True)
+class FloatingSlabTrack(SlabTrack):
+    """Rail on railpads on a continuous floating slab (see the module docstring).
+
+    Parameters
+    ----------
+    rail, pad, sleeper_spacing, pad_temperature : object
+        As :class:`SlabTrack` (fasteners at ``x = n d``; spacing in m, temperature in degC).
+    slab_bending_stiffness, slab_mass_per_length, slab_loss_factor : float
+        As :class:`SlabTrack` (N m^2, kg/m, -).
+    foundation, bearing : PadModel, optional
+        As :class:`SlabTrack` (N/m^2, N/m).
+    bearing_spacing_fasteners : int
+        With `bearing`: a bearing under every this many fasteners (>= 1), at ``x = 0``
+        among them; the cell is this many fastener spacings.
+
+    Examples
+    --------
+    >>> from railvib.pads import Hysteretic
+    >>> track = FloatingSlabTrack(
+    ...     Rail(6.42e6, 60.0), Hysteretic(4e7, 0.2), 0.6,
+    ...     slab_bending_stiffness=1.2e8, slab_mass_per_length=1750.0,
+    ...     foundation=Hysteretic(7e6, 0.1),
+    ... )
+    >>> track.receptance([10.0, 100.0], x_load=[0.3], x_obs=[0.3]).shape
+    (2, 1, 1)
+    """
+
+    bearing_spacing_fasteners: int = 1
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_value(
+            _BY_KEY["bearing_spacing_fasteners"],
+            self.bearing_spacing_fasteners,
+            "track.bearing_spacing_fasteners",
+        )
+        if self.foundation is not None and self.bearing_spacing_fasteners != 1:
+            raise CaseError(
+                "track.bearing_spacing_fasteners",
+                self.bearing_spacing_fasteners,
+                "1 (the default) with a continuous [track.foundation]; it spaces bearings",
+            )
+
+    @property
+    def period(self) -> float:
+        """Length of the periodic cell, m: one fastener spacing (one bearing spacing)."""
+        return self.sleeper_spacing * self.bearing_spacing_fasteners
+
+    def _fasteners(self) -> NDArray[np.float64]:
+        return self.sleeper_spacing * np.arange(self.bearing_spacing_fasteners, dtype=float)
+
+    def _slab_nodes(self) -> NDArray[np.float64]:
+        return np.append(self._fasteners(), self.period)
+
+    def _bearings(self) -> NDArray[np.float64]:
+        return np.zeros(1)
+
+
+@dataclass(frozen=True)
+class UnitSlabTrack(SlabTrack):
+    """Rail on railpads on unit slabs of length L_s with n fasteners each (module docstring).
+
+    Slab ``k`` spans ``[k L_s, (k + 1) L_s]``; its fasteners lie at ``k L_s + x_0 + j d``,
+    ``j = 0 ... n - 1``, ``x_0 = (L_s - (n - 1) d) / 2``. Bearings (with `bearing`) lie
+    under every fastener.
+
+    Parameters
+    ----------
+    rail, pad, sleeper_spacing, pad_temperature : object
+        As :class:`SlabTrack` (spacing in m, temperature in degC).
+    slab_bending_stiffness, slab_mass_per_length, slab_loss_factor : float
+        As :class:`SlabTrack` (N m^2, kg/m, -).
+    foundation, bearing : PadModel, optional
+        As :class:`SlabTrack` (N/m^2, N/m; bearings under every fastener).
+    slab_length : float
+        L_s in m (>= d and >= n d).
+    fasteners_per_slab : int
+        n (>= 1).
+    joint_shear_stiffness : float, optional
+        Shear stiffness of each joint, N/m (>= 0).
+    joint_bending_stiffness : float, optional
+        Bending stiffness of each joint, N m/rad (>= 0); both omitted: free joints.
+
+    Examples
+    --------
+    >>> from railvib.pads import Hysteretic
+    >>> track = UnitSlabTrack(
+    ...     Rail(6.42e6, 60.0), Hysteretic(4e7, 0.2), 0.6,
+    ...     slab_bending_stiffness=1.2e8, slab_mass_per_length=1750.0,
+    ...     foundation=Hysteretic(7e6, 0.1), slab_length=4.8, fasteners_per_slab=8,
+    ... )
+    >>> track.propagation_constants([50.0]).shape
+    (1, 2)
+    """
+
+    slab_length: float = 0.0
+    fasteners_per_slab: int = 0
+    joint_shear_stiffness: float | None = None
+    joint_bending_stiffness: float | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_value(_BY_KEY["slab_length_m"], self.slab_length, "track.slab_length_m")
+        check_value(
+            _BY_KEY["fasteners_per_slab"], self.fasteners_per_slab, "track.fasteners_per_slab"
+        )
+        for key in ("joint_shear_stiffness", "joint_bending_stiffness"):
+            if getattr(self, key) is not None:
+                check_value(_BY_KEY[key], getattr(self, key), f"track.{key}")
+        d = self.sleeper_spacing
+        if self.slab_length < d:
+            raise CaseError(
+                "track.slab_length_m",
+                self.slab_length,
+                f">= track.sleeper_spacing = {d:g} m: a slab holds at least one fastener (m)",
+            )
+        n = self.fasteners_per_slab
+        if n * d > self.slab_length * (1.0 + _MERGE):
+            raise CaseError(
+                "track.fasteners_per_slab",
+                n,
+                f"at most {int(self.slab_length / d * (1.0 + _MERGE))}: n fasteners "
+                f"{d:g} m apart need n x {d:g} <= slab_length_m = {self.slab_length:g} m "
+                "(half a spacing to each slab end at least)",
+            )
+
+    @property
+    def period(self) -> float:
+        """Length of the periodic cell, m: one slab."""
+        return self.slab_length
+
+    def _fasteners(self) -> NDArray[np.float64]:
+        d, n = self.sleeper_spacing, self.fasteners_per_slab
+        return (self.slab_length - (n - 1) * d) / 2.0 + d * np.arange(n, dtype=float)
+
+    def _slab_nodes(self) -> NDArray[np.float64]:
+        inner = np.concatenate([[0.0], self._fasteners(), [self.slab_length]])
+        if self._joints() is None:
+            return inner
+        return np.append(inner, self.slab_length)  # the next slab's left end
+
+    def _bearings(self) -> NDArray[np.float64]:
+        return self._fasteners()
+
+    def _joints(self) -> tuple[float, float] | None:
+        shear, bending = self.joint_shear_stiffness, self.joint_bending_stiffness
+        if shear is None and bending is None:
+            return None
+        return (shear or 0.0, bending or 0.0)
+
+    def _slab_crosses(self) -> bool:
+        return self._joints() is not None
+
+
+def _merged(x: NDArray[np.float64], period: float) -> NDArray[np.float64]:
+    """Sorted unique positions, merging those within ``_MERGE`` of the period."""
+    x = np.sort(np.asarray(x, dtype=float))
+    keep = np.concatenate([[True], np.diff(x) > _MERGE * period])
+    return x[keep]
+
+
+def _rail_dofs(rail_nodes: dict[float, int], local: NDArray[np.float64]) -> NDArray[np.intp]:
+    """The displacement DOF of the rail node nearest each local position (m)."""
+    keys = np.array(list(rail_nodes))
+    nodes = [rail_nodes[float(keys[np.argmin(np.abs(keys - x))])] for x in local]
+    return 2 * np.array(nodes, dtype=np.intp)
+
+
+def _at(nodes: NDArray[np.float64], x: float) -> int:
+    """Index of the first node at position `x`."""
+    return int(np.flatnonzero(np.abs(nodes - x) <= 2 * _MERGE * max(1.0, abs(x)))[0])
+
+
+def _as_freq(f: ArrayLike) -> NDArray[np.float64]:
+    f = np.atleast_1d(np.asarray(f, dtype=float))
+    if f.ndim != 1 or not np.all(np.isfinite(f) & (f > 0)):
+        raise CaseError("frequency", "non-positive or non-finite values", "finite and > 0 (Hz)")
+    return f
+
+
+def floating_slab_track(
+    sleeper_spacing: float,
+    rail: Rail,
+    pad: PadModel,
+    slab_bending_stiffness: float,
+    slab_mass_per_length: float,
+    pad_temperature_c: float | None = None,
+    slab_loss_factor: float = 0.0,
+    foundation: PadModel | None = None,
+    bearing: PadModel | None = None,
+    bearing_spacing_fasteners: int = 1,
+) -> FloatingSlabTrack:
+    """The floating slab track of a ``[track]`` table's checked values (:class:`FloatingSlabTrack`).
+
+    Parameters
+    ----------
+    sleeper_spacing : float
+        Fastener spacing d in m.
+    rail : Rail
+        The rail beam.
+    pad : PadModel
+        Railpad per fastener, N/m.
+    slab_bending_stiffness : float
+        EI_s per rail, N m^2.
+    slab_mass_per_length : float
+        m_s per rail, kg/m.
+    pad_temperature_c : float, optional
+        Temperature of the pad, foundation and bearing models, degC.
+    slab_loss_factor : float
+        eta_s (-).
+    foundation : PadModel, optional
+        Continuous foundation per metre of slab, N/m^2.
+    bearing : PadModel, optional
+        Discrete bearing, N/m.
+    bearing_spacing_fasteners : int
+        Fasteners per bearing.
+
+    Returns
+    -------
+    FloatingSlabTrack
+        The track.
+    """
+    return FloatingSlabTrack(
+        rail,
+        pad,
+        sleeper_spacing,
+        pad_temperature_c,
+        slab_bending_stiffness=slab_bending_stiffness,
+        slab_mass_per_length=slab_mass_per_length,
+        slab_loss_factor=slab_loss_factor,
+        foundation=foundation,
+        bearing=bearing,
+        bearing_spacing_fasteners=bearing_spacing_fasteners,
+    )
+
+
+def unit_slab_track(
+    sleeper_spacing: float,
+    rail: Rail,
+    pad: PadModel,
+    slab_bending_stiffness: float,
+    slab_mass_per_length: float,
+    slab_length_m: float,
+    fasteners_per_slab: int,
+    pad_temperature_c: float | None = None,
+    slab_loss_factor: float = 0.0,
+    foundation: PadModel | None = None,
+    bearing: PadModel | None = None,
+    joint_shear_stiffness: float | None = None,
+    joint_bending_stiffness: float | None = None,
+) -> UnitSlabTrack:
+    """The unit slab track of a ``[track]`` table's checked values (:class:`UnitSlabTrack`).
+
+    Parameters
+    ----------
+    sleeper_spacing : float
+        Fastener spacing d in m.
+    rail : Rail
+        The rail beam.
+    pad : PadModel
+        Railpad per fastener, N/m.
+    slab_bending_stiffness : float
+        EI_s per rail, N m^2.
+    slab_mass_per_length : float
+        m_s per rail, kg/m.
+    slab_length_m : float
+        L_s, m.
+    fasteners_per_slab : int
+        n.
+    pad_temperature_c : float, optional
+        Temperature of the pad, foundation and bearing models, degC.
+    slab_loss_factor : float
+        eta_s (-).
+    foundation : PadModel, optional
+        Continuous foundation per metre of slab, N/m^2.
+    bearing : PadModel, optional
+        Bearing under each fastener, N/m.
+    joint_shear_stiffness : float, optional
+        Joint shear stiffness, N/m.
+    joint_bending_stiffness : float, optional
+        Joint bending stiffness, N m/rad.
+
+    Returns
+    -------
+    UnitSlabTrack
+        The track.
+    """
+    return UnitSlabTrack(
+        rail,
+        pad,
+        sleeper_spacing,
+        pad_temperature_c,
+        slab_bending_stiffness=slab_bending_stiffness,
+        slab_mass_per_length=slab_mass_per_length,
+        slab_loss_factor=slab_loss_factor,
+        foundation=foundation,
+        bearing=bearing,
+        slab_length=slab_length_m,
+        fasteners_per_slab=fasteners_per_slab,
+        joint_shear_stiffness=joint_shear_stiffness,
+        joint_bending_stiffness=joint_bending_stiffness,
+    )
+
+
+TRACKS.register("floating_slab", parameters=FLOATING_SLAB_PARAMETERS, build=floating_slab_track)(
+    FloatingSlabTrack
+)
+TRACKS.register("unit_slab", parameters=UNIT_SLAB_PARAMETERS, build=unit_slab_track)(UnitSlabTrack)
