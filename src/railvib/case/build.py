@@ -29,8 +29,11 @@ __all__ = [
 
 def build_vehicle(case: Case) -> Vehicle:
     """The vehicle of the case (its ``[vehicle]`` model assembled)."""
-    model = VEHICLES.get(DEFAULT_VEHICLE_MODEL).build(**case.vehicle.model_dump())
-    return model.vehicle()
+    name = case.vehicle.model or DEFAULT_VEHICLE_MODEL
+    member = VEHICLES.get(name, "vehicle")
+    given = case.vehicle.model_dump()
+    values = {p.name: given[p.key] for p in member.parameters if given.get(p.key) is not None}
+    return member.build(**values).vehicle()
 
 
 def build_pad(case: Case) -> PadModel:

@@ -133,13 +133,63 @@ def quantity(
     return Field(..., gt=gt, ge=ge, le=le, description=doc, json_schema_extra=extra, **kw)
 
 
-#: ``[vehicle]``: the parameters of the default vehicle model, declared with it
-VehicleSection: Any = section_model(
-    "VehicleSection",
-    VEHICLES.get(DEFAULT_VEHICLE_MODEL).parameters,
-    "The 10-DOF pitch-plane car (whole car; suspensions per wheelset / per bogie).",
-    VEHICLES.get(DEFAULT_VEHICLE_MODEL).build,
+#: the key of ``[vehicle]`` naming its model (omitted: the paper's 10-DOF car)
+VEHICLE_MODEL_KEY = Parameter(
+    "model",
+    "",
+    f"vehicle model, one of {', '.join(VEHICLES.names())} (omitted: {DEFAULT_VEHICLE_MODEL}; "
+    "`railvib models vehicle`, docs/vehicles.md)",
+    "text",
+    default=None,
+    choices=tuple(VEHICLES.names()),
 )
+
+
+def _vehicle_parameters() -> tuple[Parameter, ...]:
+    """The keys of ``[vehicle]``: the model, then every model's own (checked against it)."""
+    params = [VEHICLE_MODEL_KEY]
+    for member in sorted(VEHICLES, key=lambda m: m.name != DEFAULT_VEHICLE_MODEL):
+        for p in member.parameters:
+            if p.key not in {q.key for q in params}:
+                params.append(dataclasses.replace(p, default=None))
+    return tuple(params)
+
+
+def _check_vehicle(self: Section) -> Section:
+    """Refuse keys of another vehicle model, require the model's own, and build it."""
+    name = getattr(self, "model", None) or DEFAULT_VEHICLE_MODEL
+    member = VEHICLES.get(name, "vehicle")
+    own = {p.key: p for p in member.parameters}
+    values = {}
+    for p in _vehicle_parameters()[1:]:
+        value = getattr(self, p.key)
+        if p.key not in own and value is not None:
+            raise CaseError(
+                f"vehicle.{p.key}", value, f"not a key of vehicle model {name!r} (set vehicle.model)"
+            )
+        if p.key in own and value is None and own[p.key].required:
+            unit = f" ({p.unit})" if p.unit not in ("", "-") else ""
+            raise CaseError(f"vehicle.{p.key}", "<missing>", f"required{unit}")
+        if p.key in own and value is not None:
+            values[own[p.key].name] = value
+    member.build(**values)
+    return self
+
+
+_VehicleBase: Any = section_model(
+    "VehicleSection",
+    _vehicle_parameters(),
+    "The 10-DOF pitch-plane car (whole car; suspensions per wheelset / per bogie), or a "
+    "vehicle of any topology (model = \"multibody\").",
+)
+
+#: ``[vehicle]``: the model and the parameters of every vehicle model, declared with them
+VehicleSection: Any = create_model(
+    "VehicleSection",
+    __base__=_VehicleBase,
+    __validators__={"_check_model": model_validator(mode="after")(_check_vehicle)},  # type: ignore[dict-item]
+)
+VehicleSection.__doc__ = _VehicleBase.__doc__
 
 #: ``[track.rail]``: the rail beam, declared with :class:`~railvib.track.Rail`
 RailSection: Any = table_section(Rail)

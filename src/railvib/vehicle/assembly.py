@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -125,8 +125,69 @@ class Vehicle:
 
     @cached_property
     def stiffness_matrix(self) -> NDArray[np.float64]:
-        """Stiffness matrix (N/m, N, N m), ``(n_dof, n_dof)``."""
+        """Stiffness matrix of the springs (N/m, N, N m), ``(n_dof, n_dof)``.
+
+        Without the frequency-dependent elements (:attr:`elements`).
+        """
         return self._spring_matrix("stiffness")
+
+    @cached_property
+    def elements(self) -> tuple[tuple[Any, NDArray[np.float64]], ...]:
+        """The frequency-dependent elements: ``(element, b)`` with ``b`` the DOF row vector.
+
+        Element ``e`` adds ``K*_e(f) b b^T`` to the dynamic stiffness.
+        """
+        return tuple(
+            (s.element, self.point_vector(s.upper) - self.point_vector(s.lower))
+            for s in self.suspensions
+            if s.element is not None
+        )
+
+    @cached_property
+    def static_stiffness_matrix(self) -> NDArray[np.float64]:
+        """Stiffness at ``f = 0`` (N/m, N, N m): the springs and the elements' ``Re K*(0)``."""
+        out = self.stiffness_matrix.copy()
+        for element, b in self.elements:
+            out += float(np.real(element.stiffness(np.zeros(1))[0])) * np.outer(b, b)
+        return out
+
+    @cached_property
+    def wheel_names(self) -> tuple[str, ...]:
+        """Name of each wheel, front to back (``wheel<j>`` where the wheel has none)."""
+        return tuple(w.name or f"wheel{j}" for j, w in enumerate(self.wheels, start=1))
+
+    def scaled(self, factor: float) -> Vehicle:
+        """The vehicle with every mass, inertia, stiffness, damping and element times `factor`.
+
+        Half a car on one rail is ``scaled(0.5)`` of the whole car (same frequencies).
+
+        Parameters
+        ----------
+        factor : float
+            Scale factor (> 0), dimensionless.
+
+        Returns
+        -------
+        Vehicle
+        """
+        bodies = tuple(
+            replace(
+                b,
+                mass=factor * b.mass,
+                pitch_inertia=None if b.pitch_inertia is None else factor * b.pitch_inertia,
+            )
+            for b in self.bodies
+        )
+        suspensions = tuple(
+            replace(
+                s,
+                stiffness=factor * s.stiffness,
+                damping=factor * s.damping,
+                element=None if s.element is None else _ScaledElement(s.element, factor),
+            )
+            for s in self.suspensions
+        )
+        return Vehicle(bodies, suspensions, self.wheels)
 
     @cached_property
     def damping_matrix(self) -> NDArray[np.float64]:
@@ -158,7 +219,11 @@ class Vehicle:
             Complex dynamic stiffness in SI units (N/m, N/rad, N m/m, N m/rad by DOF pair),
             shape ``(n_freq, n_dof, n_dof)``.
         """
-        return _dynamic_stiffness(f, self.mass_matrix, self.damping_matrix, self.stiffness_matrix)
+        out = _dynamic_stiffness(f, self.mass_matrix, self.damping_matrix, self.stiffness_matrix)
+        for element, b in self.elements:
+            k = np.asarray(element.stiffness(np.atleast_1d(np.asarray(f, dtype=float))))
+            out += k[:, None, None] * np.outer(b, b)
+        return out
 
     @cached_property
     def wheel_dofs(self) -> NDArray[np.int64]:
@@ -198,6 +263,12 @@ class Vehicle:
             (i, j): k[i, j] - omega2 * m[i, j] + (1j * c[i, j]) * omega
             for i, j in self._elimination.pattern
         }
+        f_np = np.atleast_1d(np.asarray(f, dtype=float))
+        for element, b in self.elements:
+            k_e = xp.asarray(np.asarray(element.stiffness(f_np), dtype=complex))
+            for i, j in self._elimination.pattern:
+                if b[i] * b[j] != 0.0:
+                    d[(i, j)] = d[(i, j)] + k_e * (b[i] * b[j])
         bad = None
         factors = []
         for p, nb in self._elimination.steps:
@@ -237,10 +308,10 @@ class Vehicle:
         order = self._body_then_wheel_order
         n_dof, n_w = int(order.size), int(self.wheel_dofs.size)
         n_b = n_dof - n_w
-        m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
+        full = self.dynamic_stiffness(f_bad)[:, order][:, :, order]
 
         def block(rows: slice, cols: slice) -> NDArray[np.complex128]:
-            return _dynamic_stiffness(f_bad, m[rows, cols], c[rows, cols], k[rows, cols])
+            return full[:, rows, cols]
 
         bodies, wheels = slice(0, n_b), slice(n_b, n_dof)
         x = np.linalg.solve(block(bodies, bodies), block(bodies, wheels))  # D_bb^-1 D_bw
@@ -267,6 +338,8 @@ class Vehicle:
         """The order in which the body DOFs are eliminated, and the entries it touches."""
         m, c, k = self._matrices
         nonzero = (m != 0) | (c != 0) | (k != 0)
+        for _, b in self.elements:
+            nonzero |= np.outer(b, b) != 0
         n = len(self.dofs)
         pattern = {(i, j) for i in range(n) for j in range(i, n) if nonzero[i, j]}
         linked = {i: {j for j in range(n) if j != i and nonzero[i, j]} for i in range(n)}
@@ -309,11 +382,23 @@ class Vehicle:
         for body in self.bodies:
             weight[self.dofs.index(f"{body.name}.bounce")] = body.mass * gravity
         # Solve min over u of the energy with B^T u = 0 (wheels fixed): KKT system
-        k = self.stiffness_matrix
+        k = self.static_stiffness_matrix
         n, m = b.shape
         kkt = np.block([[k, b], [b.T, np.zeros((m, m))]])
         sol = np.linalg.solve(kkt, np.concatenate([weight, np.zeros(m)]))
         return sol[n:]
+
+
+@dataclass(frozen=True)
+class _ScaledElement:
+    """A frequency-dependent element times a constant factor (half a car: 0.5)."""
+
+    element: Any
+    factor: float
+
+    def stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """``factor K*(f)`` in N/m."""
+        return self.factor * np.asarray(self.element.stiffness(f), dtype=complex)
 
 
 def _key(i: int, j: int) -> tuple[int, int]:
