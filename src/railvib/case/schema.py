@@ -165,7 +165,9 @@ def _check_vehicle(self: Section) -> Section:
         value = getattr(self, p.key)
         if p.key not in own and value is not None:
             raise CaseError(
-                f"vehicle.{p.key}", value, f"not a key of vehicle model {name!r} (set vehicle.model)"
+                f"vehicle.{p.key}",
+                value,
+                f"not a key of vehicle model {name!r} (set vehicle.model)",
             )
         if p.key in own and value is None and own[p.key].required:
             unit = f" ({p.unit})" if p.unit not in ("", "-") else ""
@@ -180,7 +182,7 @@ _VehicleBase: Any = section_model(
     "VehicleSection",
     _vehicle_parameters(),
     "The 10-DOF pitch-plane car (whole car; suspensions per wheelset / per bogie), or a "
-    "vehicle of any topology (model = \"multibody\").",
+    'vehicle of any topology (model = "multibody").',
 )
 
 #: ``[vehicle]``: the model and the parameters of every vehicle model, declared with them

@@ -147,9 +147,7 @@ class Parameter:
         if self.kind == "boolean":
             return "true or false"
         if self.kind in ("text", "path", "tables"):
-            return {"text": "text", "path": "a file path", "tables": "a list of tables"}[
-                self.kind
-            ]
+            return {"text": "text", "path": "a file path", "tables": "a list of tables"}[self.kind]
         parts = [f"{op} {_number(bound)}" for op, bound in self.bounds]
         return (" and ".join(parts) or "any finite value") + unit
 

@@ -264,11 +264,11 @@ class Vehicle:
             for i, j in self._elimination.pattern
         }
         f_np = np.atleast_1d(np.asarray(f, dtype=float))
-        for element, b in self.elements:
+        for element, vec in self.elements:
             k_e = xp.asarray(np.asarray(element.stiffness(f_np), dtype=complex))
             for i, j in self._elimination.pattern:
-                if b[i] * b[j] != 0.0:
-                    d[(i, j)] = d[(i, j)] + k_e * (b[i] * b[j])
+                if vec[i] * vec[j] != 0.0:
+                    d[(i, j)] = d[(i, j)] + k_e * (vec[i] * vec[j])
         bad = None
         factors = []
         for p, nb in self._elimination.steps:
@@ -398,7 +398,10 @@ class _ScaledElement:
 
     def stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
         """``factor K*(f)`` in N/m."""
-        return self.factor * np.asarray(self.element.stiffness(f), dtype=complex)
+        out: NDArray[np.complex128] = self.factor * np.asarray(
+            self.element.stiffness(f), dtype=np.complex128
+        )
+        return out
 
 
 def _key(i: int, j: int) -> tuple[int, int]:

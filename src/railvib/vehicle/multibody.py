@@ -94,7 +94,9 @@ class MultibodyVehicle(VehicleModel):
         default=(),
     )
     name: str = parameter("", "what the vehicle is", kind="text", default="")
-    source: str = parameter("", "where the values come from (paper, table)", kind="text", default="")
+    source: str = parameter(
+        "", "where the values come from (paper, table)", kind="text", default=""
+    )
     basis: str = parameter(
         "",
         "what the values stand for: the whole car or the side of one rail",
@@ -141,7 +143,7 @@ def parse_vehicle(
         whose pitch no suspension restrains.
     """
     if not isinstance(bodies, Sequence) or isinstance(bodies, str) or not bodies:
-        raise CaseError("bodies", bodies, "at least one [[bodies]] table")
+        raise CaseError("bodies", _shown(bodies), "at least one [[bodies]] table")
     parsed_bodies = [_body(t, f"bodies[{i}]") for i, t in enumerate(bodies)]
     names = [b.name for b in parsed_bodies]
     for i, name in enumerate(names):
@@ -156,12 +158,19 @@ def parse_vehicle(
         if name in s_names[:i]:
             raise CaseError(f"suspensions[{i}].name", name, "a name no other suspension has")
     if not isinstance(wheels, Sequence) or isinstance(wheels, str) or not wheels:
-        raise CaseError("wheels", wheels, "at least one [[wheels]] table (a wheel-rail contact)")
+        raise CaseError(
+            "wheels", _shown(wheels), "at least one [[wheels]] table (a wheel-rail contact)"
+        )
     parsed_wheels = [_wheel(t, f"wheels[{i}]", by_name) for i, t in enumerate(wheels)]
     _check_wheels(parsed_wheels)
     _check_connected(parsed_bodies, parsed_suspensions, parsed_wheels)
     _check_pitch(parsed_bodies, parsed_suspensions)
     return Vehicle(tuple(parsed_bodies), tuple(parsed_suspensions), tuple(parsed_wheels))
+
+
+def _shown(value: Any) -> Any:
+    """A tuple of tables shown as the list the file wrote."""
+    return list(value) if isinstance(value, tuple) else value
 
 
 def _table(t: Any, where: str, keys: Sequence[str]) -> Mapping[str, Any]:
@@ -184,9 +193,11 @@ def _text(t: Mapping[str, Any], key: str, where: str, default: str | None = None
             raise CaseError(f"{where}.{key}", "<missing>", "required (text)")
         return default
     value = t[key]
-    if not isinstance(value, str) or not value or not value.replace("_", "").replace(
-        ".", ""
-    ).replace("-", "").isalnum():
+    if (
+        not isinstance(value, str)
+        or not value
+        or not value.replace("_", "").replace(".", "").replace("-", "").isalnum()
+    ):
         raise CaseError(
             f"{where}.{key}", value, "a name of letters, digits, '_', '-' and '.' (text)"
         )
@@ -224,7 +235,9 @@ def _body(t: Any, where: str) -> RigidBody:
     mass = _number(t, "mass_kg", where, "kg", low=0.0, high=MAX_MASS_KG)
     inertia = None
     if "pitch_inertia_kg_m2" in t:
-        inertia = _number(t, "pitch_inertia_kg_m2", where, "kg m^2", low=0.0, high=MAX_INERTIA_KG_M2)
+        inertia = _number(
+            t, "pitch_inertia_kg_m2", where, "kg m^2", low=0.0, high=MAX_INERTIA_KG_M2
+        )
     x = _number(t, "x_m", where, "m", low=-MAX_X_M, high=MAX_X_M, strict=False, default=0.0)
     return RigidBody(name, mass, inertia, x)
 

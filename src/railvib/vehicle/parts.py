@@ -93,9 +93,7 @@ class Suspension:
         if self.element is None:
             _check_positive(f"vehicle.{self.name}.stiffness", self.stiffness, "N/m")
         elif not (np.isfinite(self.stiffness) and self.stiffness >= 0):
-            raise CaseError(
-                f"vehicle.{self.name}.stiffness", self.stiffness, "must be >= 0 (N/m)"
-            )
+            raise CaseError(f"vehicle.{self.name}.stiffness", self.stiffness, "must be >= 0 (N/m)")
         if not (np.isfinite(self.damping) and self.damping >= 0):
             raise CaseError(f"vehicle.{self.name}.damping", self.damping, "must be >= 0 (N s/m)")
 
