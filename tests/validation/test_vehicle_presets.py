@@ -58,7 +58,8 @@ def test_at_least_five_vehicle_presets_ship():
 def test_preset_states_source_and_basis_beside_every_value(name):
     text = vehicle_preset_text(name)
     t = tomllib.loads(text)
-    assert t["source"] and t["basis"] in ("whole_car", "half_car")
+    assert t["source"]
+    assert t["basis"] in ("whole_car", "half_car")
     assert re.search(r"\b(19|20)\d\d\b", t["source"]), "source with its year"
     assert re.search(r"^# Source: ", text, re.M)
     assert re.search(r"^# Basis: ", text, re.M)
