@@ -28,12 +28,25 @@ __all__ = [
 
 
 def build_vehicle(case: Case) -> Vehicle:
-    """The vehicle of the case (its ``[vehicle]`` model assembled)."""
+    """The vehicle of the case (its ``[vehicle]`` model assembled).
+
+    Parameters
+    ----------
+    case : Case
+        A validated case.
+
+    Returns
+    -------
+    Vehicle
+        The whole car; in ``half_car`` mode half of it (every mass, inertia, stiffness and
+        damping halved: the side of one rail).
+    """
     name = case.vehicle.model or DEFAULT_VEHICLE_MODEL
     member = VEHICLES.get(name, "vehicle")
     given = case.vehicle.model_dump()
     values = {p.name: given[p.key] for p in member.parameters if given.get(p.key) is not None}
-    return member.build(**values).vehicle()
+    vehicle = member.build(**values).vehicle()
+    return vehicle.scaled(0.5) if case.rail_model == "half_car" else vehicle
 
 
 def build_pad(case: Case) -> PadModel:
@@ -113,7 +126,8 @@ def contact_stiffness(case: Case, vehicle: Vehicle | None = None) -> float:
 
     Given explicitly, or the linearised Hertz stiffness at the static load of
     one wheel (half the wheelset load), doubled in ``rail_pair`` mode where the
-    two wheels of a wheelset act in parallel on the one beam.
+    two wheels of a wheelset act in parallel on the one beam. In ``half_car`` mode
+    the vehicle is half the car, so its contact loads are those of one wheel.
 
     Parameters
     ----------
@@ -131,7 +145,8 @@ def contact_stiffness(case: Case, vehicle: Vehicle | None = None) -> float:
     if case.contact.stiffness is not None:
         return case.contact.stiffness
     vehicle = build_vehicle(case) if vehicle is None else vehicle
-    wheel_load = float(vehicle.static_wheel_loads().mean()) / 2.0
+    per_contact = float(vehicle.static_wheel_loads().mean())
+    wheel_load = per_contact if case.rail_model == "half_car" else per_contact / 2.0
     return _rail_multiplier(case) * hertz_stiffness(case.contact.contact_constant, wheel_load)
 
 

@@ -264,7 +264,7 @@ class ContactSection(Section):
         gt=0.0,
         le=1e15,
         description="contact stiffness per wheelset; if omitted, k_H = 3/(2G) P0^(1/3) from the "
-        "static wheel load P0 (and twice that in rail_pair mode)",
+        "static wheel load P0 (and twice that in rail_pair mode); per wheel in half_car mode",
         json_schema_extra={"unit": "N/m"},
     )
     leading_wheel_position: float = quantity(
@@ -342,10 +342,13 @@ class Case(Section):
     """A complete railvib case: vehicle, track, contact, operation, irregularity, grid."""
 
     title: str = Field("railvib case", description="free text shown in outputs")
-    rail_model: Literal["single_rail", "rail_pair"] = Field(
+    rail_model: Literal["single_rail", "rail_pair", "half_car"] = Field(
         ...,
         description="single_rail: the beam is ONE rail carrying the whole vehicle (the paper's "
-        "reading); rail_pair: the beam is both rails (2 EI, 2 m, 2 pads, 2 k_H per wheelset)",
+        "reading); rail_pair: the beam is both rails (2 EI, 2 m, 2 pads, 2 k_H per wheelset); "
+        "half_car: the beam is one rail under half the vehicle (its masses, inertias and "
+        "suspensions halved, k_H of one wheel) - the same physics as rail_pair "
+        "(docs/vehicles.md)",
     )
     speed_kmh: float = quantity(
         "km/h",
