@@ -14,7 +14,7 @@ from railvib.pads.scaled import ScaledPad
 from railvib.spectra import SPECTRA, SpatialSpectrum
 from railvib.track import DEFAULT_TRACK_MODEL, TRACKS, PeriodicTrack, Rail
 from railvib.units import kmh_to_ms
-from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES, Vehicle
+from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES, Vehicle, make_train
 
 __all__ = [
     "build_grid",
@@ -38,7 +38,8 @@ def build_vehicle(case: Case) -> Vehicle:
     Returns
     -------
     Vehicle
-        The whole car; in ``half_car`` mode half of it (every mass, inertia, stiffness and
+        The whole car (a ``[train]`` of them, :func:`railvib.vehicle.make_train`); in
+        ``half_car`` mode half of it (every mass, inertia, stiffness and
         damping halved: the side of one rail).
     """
     name = case.vehicle.model or DEFAULT_VEHICLE_MODEL
@@ -46,6 +47,14 @@ def build_vehicle(case: Case) -> Vehicle:
     given = case.vehicle.model_dump()
     values = {p.name: given[p.key] for p in member.parameters if given.get(p.key) is not None}
     vehicle = member.build(**values).vehicle()
+    train = case.train
+    if train is not None and train.cars > 1:
+        vehicle = make_train(
+            [vehicle] * train.cars,
+            train.gap_m,
+            train.coupler_stiffness_n_per_m,
+            train.coupler_damping_ns_per_m,
+        )
     return vehicle.scaled(0.5) if case.rail_model == "half_car" else vehicle
 
 

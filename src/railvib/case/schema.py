@@ -30,6 +30,7 @@ __all__ = [
     "OutputSection",
     "RailSection",
     "TrackSection",
+    "TrainSection",
     "VehicleSection",
     "MAX_FREQUENCY_HZ",
     "MAX_RMS_BANDS",
@@ -272,6 +273,49 @@ class ContactSection(Section):
     )  # d <= 3 m (track.sleeper_spacing)
 
 
+#: most cars of a train (a 20-car train has 80 wheels; the track's receptance between all
+#: wheels grows as the square of their number)
+MAX_CARS = 50
+
+
+class TrainSection(Section):
+    """A train: the [vehicle] repeated car after car, all wheels on the one track."""
+
+    cars: int = Field(1, ge=1, le=MAX_CARS, description="number of cars (1: a single vehicle)")
+    gap_m: float = Field(
+        5.0,
+        gt=0.0,
+        le=1.0e3,
+        description="distance from the trailing wheel of a car to the leading wheel of the next",
+        json_schema_extra={"unit": "m"},
+    )
+    coupler_stiffness_n_per_m: float = Field(
+        0.0,
+        ge=0.0,
+        le=1.0e10,
+        description="vertical stiffness of the coupler between neighbouring car bodies "
+        "(0: no coupler)",
+        json_schema_extra={"unit": "N/m"},
+    )
+    coupler_damping_ns_per_m: float = Field(
+        0.0,
+        ge=0.0,
+        le=1.0e8,
+        description="viscous damping of the coupler (needs a coupler stiffness)",
+        json_schema_extra={"unit": "N s/m"},
+    )
+
+    @model_validator(mode="after")
+    def _coupler(self) -> TrainSection:
+        if self.coupler_damping_ns_per_m > 0 and self.coupler_stiffness_n_per_m == 0:
+            raise CaseError(
+                "train.coupler_stiffness_n_per_m",
+                0.0,
+                "must be > 0 where a coupler damping is given (N/m)",
+            )
+        return self
+
+
 class FrequencySection(Section):
     """The frequency grid of the analysis."""
 
@@ -359,6 +403,9 @@ class Case(Section):
         "likely a typo or a value in another unit",
     )
     vehicle: VehicleSection
+    train: TrainSection | None = Field(
+        None, description="a train of [vehicle] cars (omitted: one vehicle; docs/vehicles.md)"
+    )
     track: TrackSection
     contact: ContactSection
     irregularity: dict[str, Any] = Field(

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
@@ -30,10 +30,21 @@ class WheelCondensation:
     recovery_entries : list of list of array
         ``R[i][b]``, each ``(n_freq,)``: DOF ``i``'s displacement per displacement of
         wheel ``b`` (``n_dof x n_wheel`` entries).
+    recovery_wheels : tuple of tuple of int, optional
+        For each DOF, the wheels whose ``R[i][b]`` may be non-zero (a train's car on its
+        own wheels); None: every wheel.
     """
 
     stiffness_entries: list[list[Any]]
     recovery_entries: list[list[Any]]
+    recovery_wheels: tuple[tuple[int, ...], ...] | None = None
+
+    @property
+    def active_wheels(self) -> tuple[tuple[int, ...], ...]:
+        """For each DOF, the wheels its recovery depends on (all, unless `recovery_wheels`)."""
+        if self.recovery_wheels is not None:
+            return self.recovery_wheels
+        return (tuple(range(len(self.stiffness_entries))),) * len(self.recovery_entries)
 
     @property
     def stiffness(self) -> NDArray[np.complex128]:
@@ -62,11 +73,16 @@ class Vehicle:
     wheels : tuple of Wheel
         Contacts, listed from the leading wheel backwards, one per wheelset body
         (a body without a pitch DOF).
+    cars : tuple of (Vehicle, int, int), optional
+        Set by :func:`railvib.vehicle.make_train` for a train without couplers: each car,
+        the index of its first DOF and of its first wheel. The cars do not interact but
+        through the track, so each distinct car is condensed once.
     """
 
     bodies: tuple[RigidBody, ...]
     suspensions: tuple[Suspension, ...]
     wheels: tuple[Wheel, ...]
+    cars: tuple[tuple[Vehicle, int, int], ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -187,7 +203,11 @@ class Vehicle:
             )
             for s in self.suspensions
         )
-        return Vehicle(bodies, suspensions, self.wheels)
+        scaled_cars: dict[int, Vehicle] = {}
+        for car, _, _ in self.cars:
+            scaled_cars.setdefault(id(car), car.scaled(factor))
+        cars = tuple((scaled_cars[id(car)], d0, w0) for car, d0, w0 in self.cars)
+        return Vehicle(bodies, suspensions, self.wheels, cars)
 
     @cached_property
     def damping_matrix(self) -> NDArray[np.float64]:
@@ -256,6 +276,8 @@ class Vehicle:
         -------
         WheelCondensation
         """
+        if self.cars:
+            return self._condensed_by_car(f, xp)
         omega = 2.0 * np.pi * xp.asarray(np.atleast_1d(np.asarray(f, dtype=float)))
         omega2 = omega**2
         m, c, k = self._matrices
@@ -299,6 +321,26 @@ class Vehicle:
         if bad is not None and bool(xp.any(bad)):
             stiffness, recovery = self._dense_at(f, bad, stiffness, recovery, xp)
         return WheelCondensation(stiffness, recovery)
+
+    def _condensed_by_car(self, f: ArrayLike, xp: Any) -> WheelCondensation:
+        """The condensation of a train without couplers: block diagonal, one block per car."""
+        done: dict[int, WheelCondensation] = {}
+        n_w, n_dof = len(self.wheels), len(self.dofs)
+        zero = xp.zeros(np.atleast_1d(np.asarray(f)).shape, dtype=complex)
+        stiffness = [[zero] * n_w for _ in range(n_w)]
+        recovery = [[zero] * n_w for _ in range(n_dof)]
+        groups: list[tuple[int, ...]] = []
+        for car, d0, w0 in self.cars:
+            if id(car) not in done:
+                done[id(car)] = car.condensed_to_wheels(f, xp)
+            cond = done[id(car)]
+            nw = len(car.wheels)
+            for a in range(nw):
+                stiffness[w0 + a][w0 : w0 + nw] = cond.stiffness_entries[a]
+            for i in range(len(car.dofs)):
+                recovery[d0 + i][w0 : w0 + nw] = cond.recovery_entries[i]
+            groups += [tuple(range(w0, w0 + nw))] * len(car.dofs)
+        return WheelCondensation(stiffness, recovery, tuple(groups))
 
     def _dense_at(
         self, f: ArrayLike, bad: Any, stiffness: list[list[Any]], recovery: list[list[Any]], xp: Any
