@@ -27,12 +27,23 @@ from railvib.stack import dot, entries, put, solve, stacked, to_numpy
 from railvib.track.periodic import PeriodicTrack
 from railvib.vehicle.assembly import Vehicle, WheelCondensation
 
-__all__ = ["DENSE_WHEELS", "FREQUENCY_BLOCK", "CoupledFRF", "CoupledSystem", "coupled_response"]
+__all__ = [
+    "DENSE_WHEELS",
+    "FREQUENCY_BLOCK",
+    "FREQUENCY_BLOCK_MANY_WHEELS",
+    "CoupledFRF",
+    "CoupledSystem",
+    "coupled_response",
+]
 
 #: frequencies solved at once: each entry array of a block (64 kB) and the block's working
 #: set (a few hundred of them) stay in the cache; cost is linear in the number of blocks
 FREQUENCY_BLOCK = 4096
 
+
+#: frequencies solved at once for a train (more than DENSE_WHEELS wheels): its n x n
+#: receptance stack, 16 n^2 bytes a frequency, stays near the cache (16 MB for 32 wheels)
+FREQUENCY_BLOCK_MANY_WHEELS = 1024
 
 #: more wheels than this and the coupled solve works on dense stacks with LAPACK
 #: (:func:`_coupled_dense`): the stacked elimination's Python-level cost grows as n^3
@@ -120,7 +131,8 @@ class CoupledSystem:
         f : array_like
             Frequencies in Hz, ``(n_freq,)``.
         block : int, optional
-            Frequencies per block (default :data:`FREQUENCY_BLOCK`).
+            Frequencies per block (default :data:`FREQUENCY_BLOCK`, or
+            :data:`FREQUENCY_BLOCK_MANY_WHEELS` above :data:`DENSE_WHEELS` wheels).
 
         Yields
         ------
@@ -128,7 +140,9 @@ class CoupledSystem:
             The block's indices into `f`, and its responses (with the receptance).
         """
         f = np.atleast_1d(np.asarray(f, dtype=float))
-        step = FREQUENCY_BLOCK if block is None else max(1, int(block))
+        many = len(self.vehicle.wheels) > DENSE_WHEELS
+        default = FREQUENCY_BLOCK_MANY_WHEELS if many else FREQUENCY_BLOCK
+        step = default if block is None else max(1, int(block))
         x = self.wheel_positions
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
         for start in range(0, max(f.size, 1), step):
