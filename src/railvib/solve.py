@@ -30,6 +30,7 @@ from railvib.plot import OVERVIEW_STEMS
 from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
+from railvib.results.trains import car_table
 from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
@@ -304,6 +305,9 @@ def run_to_folder(
         header = case_header(case)
         contact = contact_line(ds)
         contacts = [("Contact check per wheel", contact_table(ds))]
+        per_car = car_table(table, ds)
+        if per_car is not None:
+            contacts.append(("Per car and for the train", per_car))
         files = [
             save_netcdf(ds, stage.path / "results.nc"),
             *(save_csv(ds, stage.path / f"{name}.csv", variable=name) for name in PSD_CSV),

@@ -79,3 +79,22 @@ def test_run_with_the_paper_car_preset_matches_the_default(tmp_path, monkeypatch
     assert list(a["response"].values) == list(b["response"].values)
     a.close()
     b.close()
+
+
+def test_run_the_train_preset(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    case = 'preset = "wang2017_metro_train6"\n' + BASE.split("\n", 1)[1]
+    (tmp_path / "case.toml").write_text(case, encoding="utf-8")
+    assert main(["run", "case.toml", "-o", "out", "--no-plots"]) == 0
+    ds = xr.open_dataset(tmp_path / "out" / "results.nc")
+    labels = [str(r) for r in ds["response"].values]
+    # 6 cars of 10 DOFs, then the rail under 24 wheels, each named by its car
+    assert len(labels) == 6 * 10 + 24
+    assert labels[10] == "car2.carbody.bounce"
+    assert "rail@car3.wheel2" in labels
+    assert ds.sizes["wheel"] == 24
+    ds.close()
+    summary = (tmp_path / "out" / "summary.md").read_text()
+    section = summary.split("## Per car and for the train", 1)[1]
+    rows = [line.split("|")[1].strip() for line in section.splitlines() if line.startswith("| ")]
+    assert rows[1:] == [f"car{i}" for i in range(1, 7)] + ["train"]

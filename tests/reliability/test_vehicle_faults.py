@@ -83,3 +83,18 @@ def test_bad_vehicle_reference_is_one_field_named_line(
 ):
     (tmp_path / "car.toml").write_text(CAR.format(mass=2e4, extra="", wheel2="ws2"), "utf-8")
     _run(tmp_path, monkeypatch, capsys, BASE + f"[vehicle]\n{vehicle}\n", field)
+
+
+@pytest.mark.parametrize(
+    ("train", "field"),
+    [
+        ("cars = 0", "train.cars"),
+        ("cars = 1000", "train.cars"),
+        ("cars = 2\ngap_m = -1.0", "train.gap_m"),
+        ("cars = 2\ncoupler_damping_ns_per_m = 1e4", "train.coupler_stiffness_n_per_m"),
+        ("cars = 2\nlength = 3", "train.length"),
+    ],
+    ids=["no-cars", "too-many-cars", "negative-gap", "damper-without-spring", "unknown-key"],
+)
+def test_bad_train_is_one_field_named_line(tmp_path, monkeypatch, capsys, train, field):
+    _run(tmp_path, monkeypatch, capsys, BASE + f"[train]\n{train}\n", field)

@@ -47,6 +47,11 @@ PSD_DECADES = 8.0
 _KN_PER_MM = 1e6  # N/m
 
 
+def _leading_car(label: str) -> str:
+    """`label` of the leading car of a train: ``car1.<label>``, ``rail@car1.wheel<j>``."""
+    return f"rail@car1.{label[5:]}" if label.startswith("rail@") else f"car1.{label}"
+
+
 def _log(ax: Axes, axis: str) -> None:
     """Make the x or y `axis` of `ax` logarithmic (:func:`railvib.plot.axes.log_axis`).
 
@@ -379,6 +384,9 @@ def overview_figures(ds: xr.Dataset, *, logx: bool = True) -> list[tuple[str, Fi
     labels = {str(r) for r in ds["response"].values}
     for stem, title, responses in OVERVIEW_GROUPS:
         present = [r for r in responses if r in labels]
+        if not present:  # a train: the same figure for its leading car
+            present = [r for r in map(_leading_car, responses) if r in labels]
+            title = f"{title} (leading car)" if present else title
         if not present:
             continue
         fig, ax = new_figure(figsize=(7, 4.3))
