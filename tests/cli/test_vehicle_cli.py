@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import xarray as xr
 
 from railvib.cli.main import main
@@ -64,6 +65,7 @@ def test_run_with_a_vehicle_file(tmp_path, monkeypatch):
     ds.close()
 
 
+@pytest.mark.slow  # two runs, ~1.5 s; the unit test compares the same FRFs in 0.1 s
 def test_run_with_the_paper_car_preset_matches_the_default(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "a.toml").write_text(BASE, encoding="utf-8")

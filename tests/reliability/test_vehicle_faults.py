@@ -98,3 +98,20 @@ def test_bad_vehicle_reference_is_one_field_named_line(
 )
 def test_bad_train_is_one_field_named_line(tmp_path, monkeypatch, capsys, train, field):
     _run(tmp_path, monkeypatch, capsys, BASE + f"[train]\n{train}\n", field)
+
+
+def test_sweep_over_train_length_is_refused_on_one_line(tmp_path, monkeypatch, capsys):
+    # the cases of a sweep share one response axis: a train length changes it (before the
+    # fix: IndexError traceback from the batched solve)
+    (tmp_path / "base.toml").write_text(BASE, encoding="utf-8")
+    sweep = 'base = "base.toml"\n[[axes]]\nfield = "train.cars"\nvalues = [1, 2]\n'
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "sweep.toml").write_text(sweep, encoding="utf-8")
+    before = set(tmp_path.rglob("*"))
+    assert main(["sweep", "sweep.toml", "-o", "out"]) == 2
+    captured = capsys.readouterr()
+    lines = [s for s in captured.err.splitlines() if s.strip() and not s.startswith("warning:")]
+    assert len(lines) == 1, captured.err
+    assert "axes.train.cars" in lines[0]
+    assert "Traceback" not in captured.out + captured.err
+    assert set(tmp_path.rglob("*")) == before
