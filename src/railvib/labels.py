@@ -15,10 +15,19 @@ __all__ = ["displacement_unit", "rail_label", "response_labels"]
 
 
 def rail_label(wheel: int | str) -> str:
-    """Label of the rail under wheel `wheel`: its number (1 = the leading wheel) or its name.
+    """Label of the rail under wheel `wheel`.
 
-    ``rail_label(2)`` is ``rail@wheel2``; ``rail_label("car3.wheel2")`` is
-    ``rail@car3.wheel2`` (a train's wheels are named per car).
+    Parameters
+    ----------
+    wheel : int or str
+        The wheel's number (1 = the leading wheel): ``rail_label(2)`` is ``rail@wheel2``;
+        or its name: ``rail_label("car3.wheel2")`` is ``rail@car3.wheel2`` (a train's
+        wheels are named per car).
+
+    Returns
+    -------
+    str
+        The response label.
     """
     return f"rail@wheel{wheel}" if isinstance(wheel, int) else f"rail@{wheel}"
 
