@@ -135,3 +135,21 @@ def test_time_domain_refuses_frequency_dependent_elements():
     finite = FiniteCoupledSystem.from_system(system, margin_spans=10, elements_per_span=4)
     with pytest.raises(CaseError, match="time-domain"):
         finite.time_domain_matrices()
+
+
+def test_validation_plots_pick_the_leading_car_of_a_train():
+    # `railvib validate` on a train plotted labels its vehicle lacks (KeyError traceback)
+    from railvib.validation.plots import DEFAULT_PLOT_RESPONSES, _present
+
+    labels = set(_system(cars=2, gap_m=4.0).frf(F[:2]).labels)
+    assert _present(DEFAULT_PLOT_RESPONSES, labels) == [
+        "car1.carbody.bounce",
+        "car1.bogie1.bounce",
+        "car1.wheelset2.bounce",
+        "rail@car1.wheel1",
+    ]
+    # a two-axle wagon has no bogie: that figure is left out
+    assert _present(DEFAULT_PLOT_RESPONSES, {"carbody.bounce", "rail@wheel1"}) == [
+        "carbody.bounce",
+        "rail@wheel1",
+    ]

@@ -31,7 +31,9 @@ def plot_overlays(
     outdir : str or pathlib.Path
         Folder for the figures (created if missing).
     responses : tuple of str
-        Response labels to plot.
+        Response labels to plot; a label the vehicle lacks is drawn for a train's leading
+        car (``car1.<label>``, ``rail@car1.wheel<j>``) where it has it, else left out (a
+        vehicle without bogies).
     prefix : str
         File name prefix.
 
@@ -44,7 +46,7 @@ def plot_overlays(
     out.mkdir(parents=True, exist_ok=True)
     written = []
     units = dict(zip(result.frf["response"].values, result.frf.attrs["psd_units"], strict=True))
-    for resp in responses:
+    for resp in _present(responses, set(units)):
         frf = result.frf.sel(response=resp)
         mc = result.mc.sel(response=resp)
         fig = Figure(figsize=(7.0, 4.2))
@@ -67,3 +69,12 @@ def plot_overlays(
         path = out / f"{prefix}_{resp.replace('.', '_').replace('@', '_')}.png"
         written.append(save_figure(fig, path))
     return written
+
+
+def _present(responses: tuple[str, ...], labels: set[str]) -> list[str]:
+    """`responses` found in `labels`, or their leading-car label in a train's."""
+    out = []
+    for resp in responses:
+        lead = f"rail@car1.{resp[5:]}" if resp.startswith("rail@") else f"car1.{resp}"
+        out += [r for r in (resp if resp in labels else lead,) if r in labels]
+    return out
