@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-__all__ = ["displacement_unit", "rail_label", "response_labels"]
+__all__ = ["displacement_unit", "leading_car_label", "rail_label", "response_labels"]
 
 
 def rail_label(wheel: int | str) -> str:
@@ -60,3 +60,22 @@ def response_labels(
 def displacement_unit(label: str) -> str:
     """Unit of the displacement of response `label`: ``"rad"`` for a pitch DOF, else ``"m"``."""
     return "rad" if label.endswith(".pitch") else "m"
+
+
+def leading_car_label(label: str) -> str:
+    """`label` of a single vehicle as it reads for a train's leading car.
+
+    ``carbody.bounce`` becomes ``car1.carbody.bounce`` and ``rail@wheel2`` becomes
+    ``rail@car1.wheel2`` (figures of a single car's responses show a train's first car).
+
+    Parameters
+    ----------
+    label : str
+        A response label of a single vehicle.
+
+    Returns
+    -------
+    str
+        The label of the same response of car 1.
+    """
+    return f"rail@car1.{label[5:]}" if label.startswith("rail@") else f"car1.{label}"

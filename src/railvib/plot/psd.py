@@ -21,6 +21,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from railvib.io import new_figure, save_figure
+from railvib.labels import leading_car_label
 from railvib.plot import OVERVIEW_GROUPS
 from railvib.plot.axes import SuperscriptLogFormatter, label_log_axis, log_axis
 from railvib.results.units import QUANTITY_UNITS, quantity_unit
@@ -45,11 +46,6 @@ __all__ = [
 PSD_DECADES = 8.0
 
 _KN_PER_MM = 1e6  # N/m
-
-
-def _leading_car(label: str) -> str:
-    """`label` of the leading car of a train: ``car1.<label>``, ``rail@car1.wheel<j>``."""
-    return f"rail@car1.{label[5:]}" if label.startswith("rail@") else f"car1.{label}"
 
 
 def _log(ax: Axes, axis: str) -> None:
@@ -385,7 +381,7 @@ def overview_figures(ds: xr.Dataset, *, logx: bool = True) -> list[tuple[str, Fi
     for stem, title, responses in OVERVIEW_GROUPS:
         present = [r for r in responses if r in labels]
         if not present:  # a train: the same figure for its leading car
-            present = [r for r in map(_leading_car, responses) if r in labels]
+            present = [r for r in map(leading_car_label, responses) if r in labels]
             title = f"{title} (leading car)" if present else title
         if not present:
             continue

@@ -7,7 +7,7 @@ from pathlib import Path
 from matplotlib.figure import Figure
 
 from railvib.io import save_figure
-from railvib.labels import rail_label
+from railvib.labels import leading_car_label, rail_label
 from railvib.validation.result import ValidationResult
 
 __all__ = ["DEFAULT_PLOT_RESPONSES", "plot_overlays"]
@@ -75,6 +75,6 @@ def _present(responses: tuple[str, ...], labels: set[str]) -> list[str]:
     """`responses` found in `labels`, or their leading-car label in a train's."""
     out = []
     for resp in responses:
-        lead = f"rail@car1.{resp[5:]}" if resp.startswith("rail@") else f"car1.{resp}"
-        out += [r for r in (resp if resp in labels else lead,) if r in labels]
+        label = resp if resp in labels else leading_car_label(resp)
+        out += [label] if label in labels else []
     return out
