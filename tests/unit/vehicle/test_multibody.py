@@ -246,3 +246,37 @@ def test_keys_of_the_other_model_are_refused():
     }
     with pytest.raises(CaseError, match=r"^vehicle\.carbody_mass = 1\.0: not a key of vehicle "):
         case_from_dict(data)
+
+
+def test_condensation_of_a_topology_with_loops_matches_a_dense_solve():
+    # not a tree: the car body also reaches each wheelset directly (a loop body - bogie -
+    # wheelset - body) and the two bogies are tied; the minimum-degree elimination fills
+    # in and must still equal the dense condensation (1e-10, as for the tree)
+    bodies = [
+        _body("carbody", 3.0e4, 1.5e6),
+        _body("bogieA", 3000.0, 2500.0, 6.0),
+        _body("bogieB", 2000.0, 1800.0, -6.0),
+        _body("w1", 1500.0, x=7.0),
+        _body("w2", 1500.0, x=5.0),
+        _body("w3", 1400.0, x=-5.0),
+        _body("w4", 1400.0, x=-7.0),
+    ]
+    susp = [
+        _spring("carbody", "bogieA", 3e5, 2e4, x=6.0),
+        _spring("carbody", "bogieB", 3e5, 2e4, x=-6.0),
+        _spring("bogieA", "bogieB", 1e5, 1e3, x=0.0),
+        _spring("bogieA", "w1", 1e6, 3e3),
+        _spring("bogieA", "w2", 1.2e6, 3e3),
+        _spring("bogieB", "w3", 9e5, 2e3),
+        _spring("bogieB", "w4", 9e5, 2e3),
+        _spring("carbody", "w1", 5e4, 0.0),
+        _spring("carbody", "w4", 5e4, 0.0),
+    ]
+    car = parse_vehicle(bodies, susp, [{"body": b} for b in ("w1", "w2", "w3", "w4")])
+    d = car.dynamic_stiffness(F)
+    w, b = car.wheel_dofs, np.setdiff1d(np.arange(len(car.dofs)), car.wheel_dofs)
+    dense = d[:, w][:, :, w] - d[:, w][:, :, b] @ np.linalg.solve(
+        d[:, b][:, :, b], d[:, b][:, :, w]
+    )
+    s = car.condensed_to_wheels(F).stiffness
+    assert np.abs(s - dense).max() <= 1e-10 * np.abs(dense).max()
