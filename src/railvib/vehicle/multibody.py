@@ -44,6 +44,10 @@ MAX_ELEMENT = 1e12
 #: largest |x| of a point of a vehicle or train, m (a 20-car train is 500 m long)
 MAX_X_M = 1e4
 
+#: most bodies, suspensions and wheels of one vehicle file (a car has 7 bodies, 6 suspensions
+#: and 4 wheels; trains are built from cars by make_train, not written as one file)
+MAX_ITEMS = {"bodies": 200, "suspensions": 1000, "wheels": 100}
+
 _BODY_KEYS = ("name", "mass_kg", "pitch_inertia_kg_m2", "x_m")
 _SUSPENSION_KEYS = (
     "name",
@@ -142,6 +146,13 @@ def parse_vehicle(
         pitch DOF, wheels not front to back, a body connected to no wheel, or a body
         whose pitch no suspension restrains.
     """
+    for field, items in (("bodies", bodies), ("suspensions", suspensions), ("wheels", wheels)):
+        if isinstance(items, Sequence) and len(items) > MAX_ITEMS[field]:
+            raise CaseError(
+                field,
+                f"<{len(items):,} tables>",
+                f"at most {MAX_ITEMS[field]} [[{field}]] tables in one vehicle (a train: [train])",
+            )
     if not isinstance(bodies, Sequence) or isinstance(bodies, str) or not bodies:
         raise CaseError("bodies", _shown(bodies), "at least one [[bodies]] table")
     parsed_bodies = [_body(t, f"bodies[{i}]") for i, t in enumerate(bodies)]

@@ -280,3 +280,12 @@ def test_condensation_of_a_topology_with_loops_matches_a_dense_solve():
     )
     s = car.condensed_to_wheels(F).stiffness
     assert np.abs(s - dense).max() <= 1e-10 * np.abs(dense).max()
+
+
+def test_a_huge_vehicle_file_is_refused_before_it_is_parsed():
+    # the connectivity check is quadratic in the bodies; a file of thousands is refused by
+    # count before it runs
+    bodies = [_body(f"b{i}", 1.0) for i in range(5_000)]
+    data = {"preset": "wang2017_metro", "vehicle": {**GOOD, "model": "multibody", "bodies": bodies}}
+    with pytest.raises(CaseError, match=r"^vehicle\.bodies = '<5,000 tables>': at most 200"):
+        case_from_dict(data)
