@@ -27,12 +27,27 @@ from railvib.stack import dot, entries, put, solve, stacked, to_numpy
 from railvib.track.periodic import PeriodicTrack
 from railvib.vehicle.assembly import Vehicle, WheelCondensation
 
-__all__ = ["FREQUENCY_BLOCK", "CoupledFRF", "CoupledSystem", "coupled_response"]
+__all__ = [
+    "DENSE_WHEELS",
+    "FREQUENCY_BLOCK",
+    "FREQUENCY_BLOCK_MANY_WHEELS",
+    "CoupledFRF",
+    "CoupledSystem",
+    "coupled_response",
+]
 
 #: frequencies solved at once: each entry array of a block (64 kB) and the block's working
 #: set (a few hundred of them) stay in the cache; cost is linear in the number of blocks
 FREQUENCY_BLOCK = 4096
 
+
+#: frequencies solved at once for a train (more than DENSE_WHEELS wheels): its n x n
+#: receptance stack, 16 n^2 bytes a frequency, stays near the cache (16 MB for 32 wheels)
+FREQUENCY_BLOCK_MANY_WHEELS = 1024
+
+#: more wheels than this and the coupled solve works on dense stacks with LAPACK
+#: (:func:`_coupled_dense`): the stacked elimination's Python-level cost grows as n^3
+DENSE_WHEELS = 8
 
 #: the coupled responses (one container for every solver; kept under its old name)
 CoupledFRF = FRF
@@ -105,6 +120,7 @@ class CoupledSystem:
             contact_force=np.concatenate([b.contact_force for b in blocks]),
             dofs=self.vehicle.dofs,
             receptance=np.concatenate(rec),
+            wheels=self.vehicle.wheel_names,
         )
 
     def frf_blocks(self, f: ArrayLike, block: int | None = None) -> Iterator[tuple[slice, FRF]]:
@@ -115,7 +131,8 @@ class CoupledSystem:
         f : array_like
             Frequencies in Hz, ``(n_freq,)``.
         block : int, optional
-            Frequencies per block (default :data:`FREQUENCY_BLOCK`).
+            Frequencies per block (default :data:`FREQUENCY_BLOCK`, or
+            :data:`FREQUENCY_BLOCK_MANY_WHEELS` above :data:`DENSE_WHEELS` wheels).
 
         Yields
         ------
@@ -123,7 +140,9 @@ class CoupledSystem:
             The block's indices into `f`, and its responses (with the receptance).
         """
         f = np.atleast_1d(np.asarray(f, dtype=float))
-        step = FREQUENCY_BLOCK if block is None else max(1, int(block))
+        many = len(self.vehicle.wheels) > DENSE_WHEELS
+        default = FREQUENCY_BLOCK_MANY_WHEELS if many else FREQUENCY_BLOCK
+        step = default if block is None else max(1, int(block))
         x = self.wheel_positions
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
         for start in range(0, max(f.size, 1), step):
@@ -143,6 +162,7 @@ class CoupledSystem:
                     contact_force=force[..., 0],
                     dofs=self.vehicle.dofs,
                     receptance=rec,
+                    wheels=self.vehicle.wheel_names,
                 ),
             )
 
@@ -184,6 +204,8 @@ def _coupled(
     vehicle: WheelCondensation, receptance: Any, contact_stiffness: float, excitation: Any, xp: Any
 ) -> tuple[Any, Any, Any]:
     """:func:`coupled_response` in the stacked layout, in array namespace `xp`."""
+    if len(vehicle.stiffness_entries) > DENSE_WHEELS:
+        return _coupled_dense(vehicle, receptance, contact_stiffness, excitation, xp)
     rec = entries(receptance, xp)
     s = vehicle.stiffness_entries
     n = len(rec)
@@ -205,6 +227,58 @@ def _coupled(
     vehicle_u = [_apply(row, u_w) for row in vehicle.recovery_entries]
     rail = [_apply(rec[a], force) for a in range(n)]
     return stacked(vehicle_u, xp), stacked(force, xp), stacked(rail, xp)
+
+
+def _coupled_dense(
+    vehicle: WheelCondensation, receptance: Any, contact_stiffness: float, excitation: Any, xp: Any
+) -> tuple[Any, Any, Any]:
+    """:func:`coupled_response` on ``(N, n, n)`` stacks with LAPACK: a train's many wheels.
+
+    The stacked elimination costs some ``n^3 / 3`` array operations; for the 32 wheels of an
+    8-car train that is 10^4 passes over the frequencies, where one batched LAPACK solve
+    (partial pivoting) makes one. The vehicle's recovery is applied row by row over the
+    wheels each DOF depends on (a train's car body on its own car's wheels only).
+    """
+    rec = xp.asarray(receptance) if not isinstance(receptance, list) else stacked(receptance, xp)
+    n = len(vehicle.stiffness_entries)
+    blocks = _wheel_blocks(vehicle)
+    entries_s = vehicle.stiffness_entries
+    s_blocks = [stacked([[entries_s[a][b] for b in g] for a in g], xp) for g in blocks]
+    system = xp.empty_like(rec)
+    for g, s_g in zip(blocks, s_blocks, strict=True):
+        lo, hi = g[0], g[-1] + 1
+        system[:, :, lo:hi] = rec[:, :, lo:hi] @ s_g
+        system[:, lo:hi, lo:hi] += s_g * (1.0 / contact_stiffness)
+    diag = xp.arange(n)
+    system[:, diag, diag] += 1.0
+    u_w = xp.linalg.solve(system, excitation)
+    force = xp.empty_like(u_w)
+    for g, s_g in zip(blocks, s_blocks, strict=True):
+        lo, hi = g[0], g[-1] + 1
+        force[:, lo:hi] = -(s_g @ u_w[:, lo:hi])
+    rail = rec @ force
+    columns = [u_w[:, b, :] for b in range(n)]
+    zero = xp.zeros_like(columns[0])
+    vehicle_u = []
+    for row, active in zip(vehicle.recovery_entries, vehicle.active_wheels, strict=True):
+        vehicle_u.append(
+            dot([row[b][:, None] for b in active], [columns[b] for b in active]) if active else zero
+        )
+    return xp.stack(vehicle_u, axis=1), force, rail
+
+
+def _wheel_blocks(vehicle: WheelCondensation) -> list[tuple[int, ...]]:
+    """Contiguous groups of wheels with no vehicle stiffness between groups (a train's cars).
+
+    From :attr:`WheelCondensation.recovery_wheels` where given, else one group of all.
+    """
+    n = len(vehicle.stiffness_entries)
+    groups = sorted(set(vehicle.recovery_wheels or ())) or [tuple(range(n))]
+    covered = [w for g in groups for w in g]
+    contiguous = all(g == tuple(range(g[0], g[-1] + 1)) for g in groups)
+    if sorted(covered) != list(range(n)) or not contiguous:
+        return [tuple(range(n))]
+    return groups
 
 
 def _apply(row: list[Any], x: list[Any]) -> Any:

@@ -48,6 +48,9 @@ class FRF:
     receptance : numpy.ndarray or None
         Rail receptance between the contact points, ``(n_freq, n_wheel, n_wheel)``,
         m/N, where the solver computes it.
+    wheels : tuple of str
+        Names of the wheels where they are named per car (a train, ``car1.wheel1``, ...);
+        empty: the rail labels are numbered ``rail@wheel<j>``.
     """
 
     f: NDArray[np.float64]
@@ -56,6 +59,7 @@ class FRF:
     contact_force: NDArray[np.complex128]
     dofs: tuple[str, ...] = ()
     receptance: NDArray[np.complex128] | None = None
+    wheels: tuple[str, ...] = ()
 
     @property
     def n_wheel(self) -> int:
@@ -65,7 +69,7 @@ class FRF:
     @property
     def labels(self) -> tuple[str, ...]:
         """Response labels: the vehicle DOFs, then ``rail@wheel<j>``."""
-        return response_labels(self.dofs, self.n_wheel)
+        return response_labels(self.dofs, self.n_wheel, self.wheels)
 
     @property
     def displacement(self) -> NDArray[np.complex128]:
@@ -81,4 +85,5 @@ class FRF:
             self.contact_force[index],
             self.dofs,
             self.receptance,
+            self.wheels,
         )

@@ -40,6 +40,7 @@ from railvib.plot import OVERVIEW_STEMS
 from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
+from railvib.results.trains import car_table
 from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
@@ -184,18 +185,21 @@ def criteria_settings(
         octave.bands(f)  # refuses a range beyond the grid or holding no band
         out["third_octave"] = {"f_lo": octave.f_lo, "f_hi": octave.f_hi}
     bodies = [b.name for b in system.vehicle.bodies if b.pitch_inertia is not None]
-    if c.comfort_body not in bodies:
-        raise CaseError("criteria.comfort_body", c.comfort_body, f"a body with pitch: {bodies}")
+    body = c.comfort_body
+    if "comfort_body" not in c.model_fields_set and f"car1.{body}" in bodies:
+        body = f"car1.{body}"  # a train: the leading car's body unless another is named
+    if body not in bodies:
+        raise CaseError("criteria.comfort_body", body, f"a body with pitch: {bodies}")
     band = c.comfort_band_hz or _overlap(COMFORT_RANGE_HZ, f)
     if band is None:
         return out
-    geometry = floor_geometry(system.vehicle, c.comfort_body)
+    geometry = floor_geometry(system.vehicle, body)
     settings: dict[str, Any] = {
         "floor_positions_m": tuple(c.floor_positions_m or geometry.positions),
         "floor_extent_m": geometry.extent,
         "weighting": c.comfort_weighting,
         "band_hz": tuple(band),
-        "body": c.comfort_body,
+        "body": body,
     }
     RideComfort(**settings).band(f)  # validates the settings and the band against the grid
     out["ride_comfort"] = settings
@@ -403,7 +407,11 @@ def run_to_folder(
         contact = contact_line(ds)
         footer = [contact, *criteria_lines(ds)]
         criteria = criteria_table(ds)
-        extra = [("Contact check per wheel", contact_table(ds)), ("Criteria", criteria)]
+        extra = [("Contact check per wheel", contact_table(ds))]
+        per_car = car_table(table, ds)
+        if per_car is not None:
+            extra.append(("Per car and for the train", per_car))
+        extra.append(("Criteria", criteria))
         files = [
             save_netcdf(ds, stage.path / "results.nc"),
             *(save_csv(ds, stage.path / f"{name}.csv", variable=name) for name in PSD_CSV),

@@ -14,7 +14,7 @@ from railvib.pads.scaled import ScaledPad
 from railvib.spectra import SPECTRA, SpatialSpectrum
 from railvib.track import DEFAULT_TRACK_MODEL, TRACKS, PeriodicTrack, Rail
 from railvib.units import kmh_to_ms
-from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES, Vehicle
+from railvib.vehicle import DEFAULT_VEHICLE_MODEL, VEHICLES, Vehicle, make_train
 
 __all__ = [
     "build_grid",
@@ -28,9 +28,34 @@ __all__ = [
 
 
 def build_vehicle(case: Case) -> Vehicle:
-    """The vehicle of the case (its ``[vehicle]`` model assembled)."""
-    model = VEHICLES.get(DEFAULT_VEHICLE_MODEL).build(**case.vehicle.model_dump())
-    return model.vehicle()
+    """The vehicle of the case (its ``[vehicle]`` model assembled).
+
+    Parameters
+    ----------
+    case : Case
+        A validated case.
+
+    Returns
+    -------
+    Vehicle
+        The whole car (a ``[train]`` of them, :func:`railvib.vehicle.make_train`); in
+        ``half_car`` mode half of it (every mass, inertia, stiffness and
+        damping halved: the side of one rail).
+    """
+    name = case.vehicle.model or DEFAULT_VEHICLE_MODEL
+    member = VEHICLES.get(name, "vehicle")
+    given = case.vehicle.model_dump()
+    values = {p.name: given[p.key] for p in member.parameters if given.get(p.key) is not None}
+    vehicle = member.build(**values).vehicle()
+    train = case.train
+    if train is not None and train.cars > 1:
+        vehicle = make_train(
+            [vehicle] * train.cars,
+            train.gap_m,
+            train.coupler_stiffness_n_per_m,
+            train.coupler_damping_ns_per_m,
+        )
+    return vehicle.scaled(0.5) if case.rail_model == "half_car" else vehicle
 
 
 def build_pad(case: Case) -> PadModel:
@@ -117,7 +142,8 @@ def contact_stiffness(case: Case, vehicle: Vehicle | None = None) -> float:
 
     Given explicitly, or the linearised Hertz stiffness at the static load of
     one wheel (half the wheelset load), doubled in ``rail_pair`` mode where the
-    two wheels of a wheelset act in parallel on the one beam.
+    two wheels of a wheelset act in parallel on the one beam. In ``half_car`` mode
+    the vehicle is half the car, so its contact loads are those of one wheel.
 
     Parameters
     ----------
@@ -135,7 +161,8 @@ def contact_stiffness(case: Case, vehicle: Vehicle | None = None) -> float:
     if case.contact.stiffness is not None:
         return case.contact.stiffness
     vehicle = build_vehicle(case) if vehicle is None else vehicle
-    wheel_load = float(vehicle.static_wheel_loads().mean()) / 2.0
+    per_contact = float(vehicle.static_wheel_loads().mean())
+    wheel_load = per_contact if case.rail_model == "half_car" else per_contact / 2.0
     return _rail_multiplier(case) * hertz_stiffness(case.contact.contact_constant, wheel_load)
 
 

@@ -18,7 +18,7 @@ from railvib.case.schema import FAMILY_TABLES, Case
 from railvib.errors import CaseError
 from railvib.io import check_nesting, read_toml
 from railvib.pads import PadModel
-from railvib.presets import DEFAULT_PRESET, load_preset
+from railvib.presets import DEFAULT_PRESET, load_preset, load_vehicle_preset
 from railvib.registry import merge_tables, resolve_paths
 
 __all__ = ["case_from_dict", "load_case", "load_preset_case", "merge_case_dicts"]
@@ -106,8 +106,10 @@ def case_from_dict(
     temperature_given = isinstance(own_track, dict) and "pad_temperature_c" in own_track
     output = data.get("output")
     bands_given = isinstance(output, dict) and "rms_bands" in output
+    _resolve_vehicle(data, None if base_dir is None else Path(base_dir))
     if preset is not None:
         data = merge_case_dicts(load_preset(preset), data)
+        _resolve_vehicle(data, None)
     if base_dir is not None:
         _resolve_paths(data, Path(base_dir))
     try:
@@ -157,6 +159,39 @@ def merge_case_dicts(base: dict[str, Any], override: dict[str, Any]) -> dict[str
         A new dict; neither input is modified.
     """
     return merge_tables(base, override)
+
+
+def _resolve_vehicle(data: dict[str, Any], base_dir: Path | None) -> None:
+    """Replace a ``[vehicle]`` table that names a vehicle file or preset by its contents.
+
+    ``[vehicle] file = "my_car.toml"`` (relative to the case file) or ``[vehicle] preset =
+    "<name>"`` (:func:`railvib.presets.list_vehicle_presets`); the table takes no other key.
+    The file's table names its ``model`` (omitted: ``multibody``), so it replaces a preset's
+    vehicle whole (:func:`railvib.registry.merge_tables`).
+    """
+    table = data.get("vehicle")
+    if not isinstance(table, dict) or not ({"file", "preset"} & set(table)):
+        return
+    key = "file" if "file" in table else "preset"
+    for other in table:
+        if other != key:
+            raise CaseError(
+                f"vehicle.{other}",
+                table[other],
+                f"no other key beside vehicle.{key} (write it in the vehicle file)",
+            )
+    value = table[key]
+    if not isinstance(value, str) or not value:
+        raise CaseError(f"vehicle.{key}", value, "a file path" if key == "file" else "a name")
+    if key == "preset":
+        loaded = load_vehicle_preset(value)
+    else:
+        path = Path(value)
+        if not path.is_absolute() and base_dir is not None:
+            path = base_dir / path
+        loaded = read_toml(path, "vehicle.file", "docs/vehicles.md shows one")
+    loaded.setdefault("model", "multibody")
+    data["vehicle"] = loaded
 
 
 def _resolve_paths(data: dict[str, Any], base_dir: Path) -> None:

@@ -31,6 +31,7 @@ __all__ = [
     "OutputSection",
     "RailSection",
     "TrackSection",
+    "TrainSection",
     "VehicleSection",
     "MAX_FREQUENCY_HZ",
     "MAX_RMS_BANDS",
@@ -134,13 +135,65 @@ def quantity(
     return Field(..., gt=gt, ge=ge, le=le, description=doc, json_schema_extra=extra, **kw)
 
 
-#: ``[vehicle]``: the parameters of the default vehicle model, declared with it
-VehicleSection: Any = section_model(
-    "VehicleSection",
-    VEHICLES.get(DEFAULT_VEHICLE_MODEL).parameters,
-    "The 10-DOF pitch-plane car (whole car; suspensions per wheelset / per bogie).",
-    VEHICLES.get(DEFAULT_VEHICLE_MODEL).build,
+#: the key of ``[vehicle]`` naming its model (omitted: the paper's 10-DOF car)
+VEHICLE_MODEL_KEY = Parameter(
+    "model",
+    "",
+    f"vehicle model, one of {', '.join(VEHICLES.names())} (omitted: {DEFAULT_VEHICLE_MODEL}; "
+    "`railvib models vehicle`, docs/vehicles.md)",
+    "text",
+    default=None,
+    choices=tuple(VEHICLES.names()),
 )
+
+
+def _vehicle_parameters() -> tuple[Parameter, ...]:
+    """The keys of ``[vehicle]``: the model, then every model's own (checked against it)."""
+    params = [VEHICLE_MODEL_KEY]
+    for member in sorted(VEHICLES, key=lambda m: m.name != DEFAULT_VEHICLE_MODEL):
+        for p in member.parameters:
+            if p.key not in {q.key for q in params}:
+                params.append(dataclasses.replace(p, default=None))
+    return tuple(params)
+
+
+def _check_vehicle(self: Section) -> Section:
+    """Refuse keys of another vehicle model, require the model's own, and build it."""
+    name = getattr(self, "model", None) or DEFAULT_VEHICLE_MODEL
+    member = VEHICLES.get(name, "vehicle")
+    own = {p.key: p for p in member.parameters}
+    values = {}
+    for p in _vehicle_parameters()[1:]:
+        value = getattr(self, p.key)
+        if p.key not in own and value is not None:
+            raise CaseError(
+                f"vehicle.{p.key}",
+                value,
+                f"not a key of vehicle model {name!r} (set vehicle.model)",
+            )
+        if p.key in own and value is None and own[p.key].required:
+            unit = f" ({p.unit})" if p.unit not in ("", "-") else ""
+            raise CaseError(f"vehicle.{p.key}", "<missing>", f"required{unit}")
+        if p.key in own and value is not None:
+            values[own[p.key].name] = value
+    member.build(**values)
+    return self
+
+
+_VehicleBase: Any = section_model(
+    "VehicleSection",
+    _vehicle_parameters(),
+    "The 10-DOF pitch-plane car (whole car; suspensions per wheelset / per bogie), or a "
+    'vehicle of any topology (model = "multibody").',
+)
+
+#: ``[vehicle]``: the model and the parameters of every vehicle model, declared with them
+VehicleSection: Any = create_model(
+    "VehicleSection",
+    __base__=_VehicleBase,
+    __validators__={"_check_model": model_validator(mode="after")(_check_vehicle)},  # type: ignore[dict-item]
+)
+VehicleSection.__doc__ = _VehicleBase.__doc__
 
 #: ``[track.rail]``: the rail beam, declared with :class:`~railvib.track.Rail`
 RailSection: Any = table_section(Rail)
@@ -213,12 +266,55 @@ class ContactSection(Section):
         gt=0.0,
         le=1e15,
         description="contact stiffness per wheelset; if omitted, k_H = 3/(2G) P0^(1/3) from the "
-        "static wheel load P0 (and twice that in rail_pair mode)",
+        "static wheel load P0 (and twice that in rail_pair mode); per wheel in half_car mode",
         json_schema_extra={"unit": "N/m"},
     )
     leading_wheel_position: float = quantity(
         "m", "position of the leading wheel after a sleeper, in [0, d)", ge=0.0, le=3.0
     )  # d <= 3 m (track.sleeper_spacing)
+
+
+#: most cars of a train (a 20-car train has 80 wheels; the track's receptance between all
+#: wheels grows as the square of their number)
+MAX_CARS = 50
+
+
+class TrainSection(Section):
+    """A train: the [vehicle] repeated car after car, all wheels on the one track."""
+
+    cars: int = Field(1, ge=1, le=MAX_CARS, description="number of cars (1: a single vehicle)")
+    gap_m: float = Field(
+        5.0,
+        gt=0.0,
+        le=1.0e3,
+        description="distance from the trailing wheel of a car to the leading wheel of the next",
+        json_schema_extra={"unit": "m"},
+    )
+    coupler_stiffness_n_per_m: float = Field(
+        0.0,
+        ge=0.0,
+        le=1.0e10,
+        description="vertical stiffness of the coupler between neighbouring car bodies "
+        "(0: no coupler)",
+        json_schema_extra={"unit": "N/m"},
+    )
+    coupler_damping_ns_per_m: float = Field(
+        0.0,
+        ge=0.0,
+        le=1.0e8,
+        description="viscous damping of the coupler (needs a coupler stiffness)",
+        json_schema_extra={"unit": "N s/m"},
+    )
+
+    @model_validator(mode="after")
+    def _coupler(self) -> TrainSection:
+        if self.coupler_damping_ns_per_m > 0 and self.coupler_stiffness_n_per_m == 0:
+            raise CaseError(
+                "train.coupler_stiffness_n_per_m",
+                0.0,
+                "must be > 0 where a coupler damping is given (N/m)",
+            )
+        return self
 
 
 class FrequencySection(Section):
@@ -298,7 +394,9 @@ class CriteriaSection(Section):
         json_schema_extra={"unit": "m"},
     )
     comfort_body: str = Field(
-        "carbody", description="the body whose floor is evaluated (a body with bounce and pitch)"
+        "carbody",
+        description="the body whose floor is evaluated (a body with bounce and pitch; in a "
+        "train the default is the leading car's, car1.carbody)",
     )
     comfort_weighting: Literal["Wb", "Wk"] = Field(
         "Wb",
@@ -322,10 +420,13 @@ class Case(Section):
     """A complete railvib case: vehicle, track, contact, operation, irregularity, grid."""
 
     title: str = Field("railvib case", description="free text shown in outputs")
-    rail_model: Literal["single_rail", "rail_pair"] = Field(
+    rail_model: Literal["single_rail", "rail_pair", "half_car"] = Field(
         ...,
         description="single_rail: the beam is ONE rail carrying the whole vehicle (the paper's "
-        "reading); rail_pair: the beam is both rails (2 EI, 2 m, 2 pads, 2 k_H per wheelset)",
+        "reading); rail_pair: the beam is both rails (2 EI, 2 m, 2 pads, 2 k_H per wheelset); "
+        "half_car: the beam is one rail under half the vehicle (its masses, inertias and "
+        "suspensions halved, k_H of one wheel) - the same physics as rail_pair "
+        "(docs/vehicles.md)",
     )
     speed_kmh: float = quantity(
         "km/h",
@@ -336,6 +437,9 @@ class Case(Section):
         "likely a typo or a value in another unit",
     )
     vehicle: VehicleSection
+    train: TrainSection | None = Field(
+        None, description="a train of [vehicle] cars (omitted: one vehicle; docs/vehicles.md)"
+    )
     track: TrackSection
     contact: ContactSection
     irregularity: dict[str, Any] = Field(

@@ -34,6 +34,7 @@ _PYTHON_TYPES: dict[str, Any] = {
     "text": str,
     "path": str,
     "numbers": list[float],
+    "tables": list[dict[str, Any]],
 }
 
 

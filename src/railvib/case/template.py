@@ -37,15 +37,26 @@ def _section(model: type[BaseModel], values: dict[str, Any], path: tuple[str, ..
         if here in FAMILY_TABLES and isinstance(value, dict):
             doc = (info.description or "").split(" (")[0]
             tables.append(FAMILY_TABLES[here].template_lines(value, header, doc))
-        elif isinstance(annotation, type) and issubclass(annotation, BaseModel):
-            head = [f"# {annotation.__doc__.strip().splitlines()[0]}"] if annotation.__doc__ else []
-            tables.append([*head, f"[{header}]", *_section(annotation, value or {}, here)])
+        elif (section := _section_type(annotation)) is not None:
+            head = [f"# {section.__doc__.strip().splitlines()[0]}"] if section.__doc__ else []
+            body = [f"[{header}]", *_section(section, value or {}, here)]
+            if value is None:  # an optional section the preset leaves out: shown commented
+                body = [line if line.startswith("#") else f"# {line}" for line in body]
+            tables.append([*head, *body])
         else:
             lines.append(_comment(info))
             lines.append(f"# {name} = ..." if value is None else toml_line(name, value))
     for table in tables:
         lines += ["", *table]
     return lines
+
+
+def _section_type(annotation: Any) -> type[BaseModel] | None:
+    """The section model of a field annotated ``Section`` or ``Section | None``."""
+    for candidate in (annotation, *getattr(annotation, "__args__", ())):
+        if isinstance(candidate, type) and issubclass(candidate, BaseModel):
+            return candidate
+    return None
 
 
 def _families_header() -> list[str]:

@@ -104,7 +104,7 @@ def floor_geometry(vehicle: Vehicle, body: str = "carbody") -> FloorGeometry:
     The default points are over the suspensions `body` rests on (for the car body: the
     secondary suspensions, over the bogie centres) and its centre; the extent is the
     vehicle's wheelbase for the top body (one that hangs on no suspension), else the
-    span of the suspensions it rests on.
+    span of the suspensions it rests on (in a train, a car's wheelbase: its own wheels).
 
     Parameters
     ----------
@@ -123,7 +123,8 @@ def floor_geometry(vehicle: Vehicle, body: str = "carbody") -> FloorGeometry:
     if any(s.lower.body == body for s in vehicle.suspensions):
         extent = (min(under, default=0.0), max(under, default=0.0))
     else:
-        wheels = [w.x - x0 for w in vehicle.wheels]
+        car = body.rpartition(".")[0]  # a train's car: its own wheels ("car2.wheel1", ...)
+        wheels = [w.x - x0 for w in vehicle.wheels if w.name.rpartition(".")[0] == car]
         extent = (min(wheels), max(wheels))
     return FloorGeometry(body, positions, extent)
 

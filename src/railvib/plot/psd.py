@@ -21,6 +21,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from railvib.io import new_figure, save_figure
+from railvib.labels import leading_car_label
 from railvib.plot import OVERVIEW_GROUPS
 from railvib.plot.axes import SuperscriptLogFormatter, label_log_axis, log_axis
 from railvib.results.units import QUANTITY_UNITS, quantity_unit
@@ -379,6 +380,9 @@ def overview_figures(ds: xr.Dataset, *, logx: bool = True) -> list[tuple[str, Fi
     labels = {str(r) for r in ds["response"].values}
     for stem, title, responses in OVERVIEW_GROUPS:
         present = [r for r in responses if r in labels]
+        if not present:  # a train: the same figure for its leading car
+            present = [r for r in map(leading_car_label, responses) if r in labels]
+            title = f"{title} (leading car)" if present else title
         if not present:
             continue
         fig, ax = new_figure(figsize=(7, 4.3))

@@ -17,6 +17,7 @@ from matplotlib.colors import LogNorm
 
 from railvib.errors import CaseError, did_you_mean
 from railvib.io import new_figure, save_figure
+from railvib.labels import leading_car_label
 from railvib.outputs import loss_of_contact_threshold
 from railvib.plot import DEFAULT_SWEEP_RESPONSES
 
@@ -319,7 +320,10 @@ def save_sweep_plots(
     """
     outdir = Path(outdir)
     labels = [str(r) for r in ds["response"].values]
-    responses = list(responses) if responses else [r for r in DEFAULT_RESPONSES if r in labels]
+    if not responses:  # the defaults present, or those of a train's leading car
+        picked = [r if r in labels else leading_car_label(r) for r in DEFAULT_RESPONSES]
+        responses = [r for r in picked if r in labels]
+    responses = list(responses)
     for variable in variables:  # every request is checked before any file is written
         _resolve(ds, variable, responses, x, y, "auto")
     outdir.mkdir(parents=True, exist_ok=True)

@@ -306,6 +306,8 @@ class Registry(Generic[T]):
                 out[p.key] = [float(x) for x in value]
             elif p.kind == "number":
                 out[p.key] = float(value)
+            elif p.kind == "tables":
+                out[p.key] = [dict(t) for t in value]
             else:
                 out[p.key] = value
         return out

@@ -29,7 +29,9 @@ __all__ = [
 
 T = TypeVar("T")
 
-Kind = Literal["number", "integer", "boolean", "text", "numbers", "path", "member", "table"]
+Kind = Literal[
+    "number", "integer", "boolean", "text", "numbers", "path", "member", "table", "tables"
+]
 
 
 class _Required:
@@ -67,8 +69,9 @@ class Parameter:
     kind : str
         ``number`` (finite float), ``integer``, ``boolean``, ``text``, ``numbers``
         (tuple of finite floats), ``path`` (file, resolved relative to the case
-        file), ``member`` (a nested table of family `family`) or ``table`` (a nested
-        table of the fixed dataclass `table`).
+        file), ``member`` (a nested table of family `family`), ``table`` (a nested
+        table of the fixed dataclass `table`) or ``tables`` (a list of tables the
+        member checks itself, e.g. a vehicle's ``[[bodies]]``).
     default : object
         Value when the key is omitted; :data:`REQUIRED` when it must be given.
     gt, ge, lt, le : float, optional
@@ -143,8 +146,8 @@ class Parameter:
             return "one of " + ", ".join(repr(c) for c in self.choices) + unit
         if self.kind == "boolean":
             return "true or false"
-        if self.kind in ("text", "path"):
-            return {"text": "text", "path": "a file path"}[self.kind]
+        if self.kind in ("text", "path", "tables"):
+            return {"text": "text", "path": "a file path", "tables": "a list of tables"}[self.kind]
         parts = [f"{op} {_number(bound)}" for op, bound in self.bounds]
         return (" and ".join(parts) or "any finite value") + unit
 
@@ -357,6 +360,13 @@ def check_value(p: Parameter, value: Any, where: str, style: str = "must") -> An
         if not isinstance(value, str) or (p.choices is not None and value not in p.choices):
             raise _bad(p, where, value, style, type_error=True)
         return value
+    if p.kind == "tables":
+        if isinstance(value, str | bytes | Mapping) or not isinstance(value, Sequence):
+            raise CaseError(where, value, "must be a list of tables")
+        for i, item in enumerate(value):
+            if not isinstance(item, Mapping):
+                raise CaseError(f"{where}[{i}]", item, "must be a table")
+        return tuple(dict(item) for item in value)
     return value  # members are checked by their own family
 
 

@@ -122,11 +122,19 @@ def frf_many_speeds(
     def first(a: NDArray[Any]) -> NDArray[np.complex128]:
         return np.moveaxis(np.asarray(a, dtype=np.complex128), -1, 0)
 
-    return FRF(f, first(u_v), first(rail), first(force), system.vehicle.dofs, rec)
+    return FRF(
+        f,
+        first(u_v),
+        first(rail),
+        first(force),
+        system.vehicle.dofs,
+        rec,
+        system.vehicle.wheel_names,
+    )
 
 
 def case_labels(system: CoupledSystem) -> list[str]:
-    """Response labels of a run: vehicle DOFs, then ``rail@wheel<j>``.
+    """Response labels of a run: vehicle DOFs, then ``rail@wheel<j>`` (a train's per car).
 
     Parameters
     ----------
@@ -138,7 +146,8 @@ def case_labels(system: CoupledSystem) -> list[str]:
     list of str
         The labels (see :func:`railvib.response.response_labels`).
     """
-    return list(response_labels(system.vehicle.dofs, system.vehicle.wheel_offsets.size))
+    vehicle = system.vehicle
+    return list(response_labels(vehicle.dofs, len(vehicle.wheels), vehicle.wheel_names))
 
 
 def _key(d: Any) -> str:
@@ -369,19 +378,23 @@ def _solve_groups(
     loads: NDArray[np.float64] | None = None
     out: dict[str, NDArray[np.complex128]] = {}
     dofs: tuple[str, ...] = ()
+    wheels: tuple[str, ...] = ()
     condensations: dict[str, WheelCondensation] = {}
     pads: dict[str, PadModel] = {}
     spectra: dict[str, Any] = {}
     for members in groups:
         case = case_from_dict(cases[members[0]], warn=False)
         system = build_system(case)
-        vkey = _key(cases[members[0]]["vehicle"])
+        first = cases[members[0]]
+        # the vehicle as built: its table, the train it repeats in, and half_car halving it
+        vkey = _key([first["vehicle"], first.get("train"), first["rail_model"] == "half_car"])
         if vkey not in condensations:
             condensations[vkey] = system.vehicle.condensed_to_wheels(f)
         member_pads = []
+        factor = system.track.pad.factor if isinstance(system.track.pad, ScaledPad) else 1.0
         for i in members:
             table = cases[i]["track"]["pad"]
-            pkey = _key(table)
+            pkey = _key([table, factor])  # rail_pair doubles the pad: not the same pad
             if pkey not in pads:
                 pads[pkey] = _pad_like(system.track.pad, table)
             member_pads.append(pads[pkey])
@@ -396,7 +409,7 @@ def _solve_groups(
         static = np.asarray(system.vehicle.static_wheel_loads(), dtype=float)
         if loads is None:
             loads = np.empty((n_case, static.size))
-            dofs = batch.dofs
+            dofs, wheels = batch.dofs, system.vehicle.wheel_names
         for name in ("vehicle", "rail", "contact_force"):
             value = getattr(batch, name)
             if name not in out:
@@ -409,7 +422,7 @@ def _solve_groups(
                 spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
             s_r[i] = spectra[ikey].temporal(f, kmh_to_ms(cases[i]["speed_kmh"]))
     assert loads is not None, "every case belongs to one group"
-    frf = FRF(f, out["vehicle"], out["rail"], out["contact_force"], dofs)
+    frf = FRF(f, out["vehicle"], out["rail"], out["contact_force"], dofs, wheels=wheels)
     return frf, s_r, loads
 
 

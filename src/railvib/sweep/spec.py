@@ -55,6 +55,7 @@ from railvib.io import check_nesting, read_toml
 from railvib.outputs import LOSS_OF_CONTACT_NOTE
 from railvib.results.variables import PER_FREQUENCY, VARIABLES
 from railvib.solve import criteria_settings
+from railvib.vehicle import Vehicle
 
 __all__ = [
     "MAX_AXIS_VALUES",
@@ -817,11 +818,28 @@ def _check_value(base: dict[str, Any], field: str, value: Any, base_dir: Path, w
     """Validate the base case with one axis value, so a bad value is named at load time."""
     override = nested_override(field, value)
     try:
-        case_from_dict(merge_case_dicts(base, override), base_dir=base_dir)
+        case = case_from_dict(merge_case_dicts(base, override), base_dir=base_dir)
     except CaseError as exc:
         raise CaseError(
             exc.field, exc.value, f"{exc.allowed} [sweep {where}, field {field}]"
         ) from None
+    if field.split(".")[0] in ("vehicle", "train"):
+        layout = _layout(build_vehicle(case))
+        base_layout = _layout(build_vehicle(case_from_dict(base, base_dir=base_dir, warn=False)))
+        if layout != base_layout:
+            raise CaseError(
+                f"axes.{field}",
+                value,
+                f"a value that keeps the base case's vehicle DOFs and wheels ({len(base_layout[0])}"
+                f" DOFs, {len(base_layout[1])} wheels; this one has {len(layout[0])} and "
+                f"{len(layout[1])}): the cases of a sweep share one response axis; run one case "
+                f"(or one sweep) per train length or vehicle topology [sweep {where}]",
+            )
+
+
+def _layout(vehicle: Vehicle) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The DOF and wheel names of a vehicle: what a sweep's cases must share."""
+    return vehicle.dofs, vehicle.wheel_names
 
 
 #: the case field holding the railpad temperature

@@ -186,9 +186,21 @@ class FiniteCoupledSystem:
         )
 
     def time_domain_matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
-        """Global real ``(M, C, K)`` (kg, N s/m, N/m), contact springs included in K."""
+        """Global real ``(M, C, K)`` (kg, N s/m, N/m), contact springs included in K.
+
+        Raises
+        ------
+        CaseError
+            The vehicle has frequency-dependent suspension elements (no ``M, C, K`` form).
+        """
         m_t, c_t, k_t = self.track.time_domain_matrices()
         v = self.vehicle
+        if v.elements:
+            raise CaseError(
+                "vehicle.suspensions",
+                "<a frequency-dependent element>",
+                "springs and viscous dampers only in the time-domain reference (Newmark)",
+            )
         m = sp.block_diag([sp.csc_matrix(v.mass_matrix), m_t], format="csc")
         c = sp.block_diag([sp.csc_matrix(v.damping_matrix), c_t], format="csc")
         k = sp.block_diag([sp.csc_matrix(v.stiffness_matrix), k_t], format="csc")
@@ -220,6 +232,7 @@ class FiniteCoupledSystem:
         )
         damping = self._vehicle_block(v.damping_matrix)
         mass = self._vehicle_block(v.mass_matrix)
+        elements = [(e.stiffness(f), sp.csc_matrix(np.outer(b, b))) for e, b in v.elements]
         force = self.force_matrix().toarray()
         g = self.contact_matrix
         n_wheel = g.shape[0]
@@ -232,14 +245,24 @@ class FiniteCoupledSystem:
             track = sp.block_diag(
                 [sp.csc_matrix((nv, nv)), self.track.dynamic_stiffness(fk)], format="csc"
             )
-            system = (static + 1j * omega * damping - omega**2 * mass + track).tocsc()
+            system = static + 1j * omega * damping - omega**2 * mass + track
+            for k_e, pattern in elements:  # frequency-dependent suspension elements
+                system = system + k_e[k] * self._vehicle_block(pattern.toarray())
+            system = system.tocsc()
             u = splu(system).solve(force @ r)
             out_v[k] = u[:nv]
             out_r[k] = u[self.rail_dofs]
             out_p[k] = self.contact_stiffness * (g @ u - r)
             if progress is not None:
                 progress(1)
-        return FRF(f=f, vehicle=out_v, rail=out_r, contact_force=out_p, dofs=v.dofs)
+        return FRF(
+            f=f,
+            vehicle=out_v,
+            rail=out_r,
+            contact_force=out_p,
+            dofs=v.dofs,
+            wheels=v.wheel_names,
+        )
 
 
 def _finite_system(

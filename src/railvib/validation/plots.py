@@ -7,7 +7,7 @@ from pathlib import Path
 from matplotlib.figure import Figure
 
 from railvib.io import save_figure
-from railvib.labels import rail_label
+from railvib.labels import leading_car_label, rail_label
 from railvib.validation.result import ValidationResult
 
 __all__ = ["DEFAULT_PLOT_RESPONSES", "plot_file_name", "plot_overlays"]
@@ -49,7 +49,9 @@ def plot_overlays(
     outdir : str or pathlib.Path
         Folder for the figures (created if missing).
     responses : tuple of str
-        Response labels to plot.
+        Response labels to plot; a label the vehicle lacks is drawn for a train's leading
+        car (``car1.<label>``, ``rail@car1.wheel<j>``) where it has it, else left out (a
+        vehicle without bogies).
     prefix : str
         File name prefix.
 
@@ -62,7 +64,7 @@ def plot_overlays(
     out.mkdir(parents=True, exist_ok=True)
     written = []
     units = dict(zip(result.frf["response"].values, result.frf.attrs["psd_units"], strict=True))
-    for resp in responses:
+    for resp in _present(responses, set(units)):
         frf = result.frf.sel(response=resp)
         mc = result.mc.sel(response=resp)
         fig = Figure(figsize=(7.0, 4.2))
@@ -85,3 +87,12 @@ def plot_overlays(
         path = out / plot_file_name(prefix, resp)
         written.append(save_figure(fig, path))
     return written
+
+
+def _present(responses: tuple[str, ...], labels: set[str]) -> list[str]:
+    """`responses` found in `labels`, or their leading-car label in a train's."""
+    out = []
+    for resp in responses:
+        label = resp if resp in labels else leading_car_label(resp)
+        out += [label] if label in labels else []
+    return out

@@ -77,7 +77,7 @@ class TimeHistory:
 def output_dofs(system: FiniteCoupledSystem) -> tuple[NDArray[np.intp], tuple[str, ...]]:
     """Global DOF indices and labels of the outputs: vehicle DOFs, then rail under the wheels."""
     nv = system.n_vehicle
-    labels = response_labels(system.vehicle.dofs, system.rail_dofs.size)
+    labels = response_labels(system.vehicle.dofs, system.rail_dofs.size, system.vehicle.wheel_names)
     return np.concatenate([np.arange(nv), system.rail_dofs]), labels
 
 

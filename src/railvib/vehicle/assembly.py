@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
@@ -30,10 +30,21 @@ class WheelCondensation:
     recovery_entries : list of list of array
         ``R[i][b]``, each ``(n_freq,)``: DOF ``i``'s displacement per displacement of
         wheel ``b`` (``n_dof x n_wheel`` entries).
+    recovery_wheels : tuple of tuple of int, optional
+        For each DOF, the wheels whose ``R[i][b]`` may be non-zero (a train's car on its
+        own wheels); None: every wheel.
     """
 
     stiffness_entries: list[list[Any]]
     recovery_entries: list[list[Any]]
+    recovery_wheels: tuple[tuple[int, ...], ...] | None = None
+
+    @property
+    def active_wheels(self) -> tuple[tuple[int, ...], ...]:
+        """For each DOF, the wheels its recovery depends on (all, unless `recovery_wheels`)."""
+        if self.recovery_wheels is not None:
+            return self.recovery_wheels
+        return (tuple(range(len(self.stiffness_entries))),) * len(self.recovery_entries)
 
     @property
     def stiffness(self) -> NDArray[np.complex128]:
@@ -62,11 +73,16 @@ class Vehicle:
     wheels : tuple of Wheel
         Contacts, listed from the leading wheel backwards, one per wheelset body
         (a body without a pitch DOF).
+    cars : tuple of (Vehicle, int, int), optional
+        Set by :func:`railvib.vehicle.make_train` for a train without couplers: each car,
+        the index of its first DOF and of its first wheel. The cars do not interact but
+        through the track, so each distinct car is condensed once.
     """
 
     bodies: tuple[RigidBody, ...]
     suspensions: tuple[Suspension, ...]
     wheels: tuple[Wheel, ...]
+    cars: tuple[tuple[Vehicle, int, int], ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         names = [b.name for b in self.bodies]
@@ -125,8 +141,73 @@ class Vehicle:
 
     @cached_property
     def stiffness_matrix(self) -> NDArray[np.float64]:
-        """Stiffness matrix (N/m, N, N m), ``(n_dof, n_dof)``."""
+        """Stiffness matrix of the springs (N/m, N, N m), ``(n_dof, n_dof)``.
+
+        Without the frequency-dependent elements (:attr:`elements`).
+        """
         return self._spring_matrix("stiffness")
+
+    @cached_property
+    def elements(self) -> tuple[tuple[Any, NDArray[np.float64]], ...]:
+        """The frequency-dependent elements: ``(element, b)`` with ``b`` the DOF row vector.
+
+        Element ``e`` adds ``K*_e(f) b b^T`` to the dynamic stiffness.
+        """
+        return tuple(
+            (s.element, self.point_vector(s.upper) - self.point_vector(s.lower))
+            for s in self.suspensions
+            if s.element is not None
+        )
+
+    @cached_property
+    def static_stiffness_matrix(self) -> NDArray[np.float64]:
+        """Stiffness at ``f = 0`` (N/m, N, N m): the springs and the elements' ``Re K*(0)``."""
+        out = self.stiffness_matrix.copy()
+        for element, b in self.elements:
+            out += float(np.real(element.stiffness(np.zeros(1))[0])) * np.outer(b, b)
+        return out
+
+    @cached_property
+    def wheel_names(self) -> tuple[str, ...]:
+        """Name of each wheel, front to back (``wheel<j>`` where the wheel has none)."""
+        return tuple(w.name or f"wheel{j}" for j, w in enumerate(self.wheels, start=1))
+
+    def scaled(self, factor: float) -> Vehicle:
+        """The vehicle with every mass, inertia, stiffness, damping and element times `factor`.
+
+        Half a car on one rail is ``scaled(0.5)`` of the whole car (same frequencies).
+
+        Parameters
+        ----------
+        factor : float
+            Scale factor (> 0), dimensionless.
+
+        Returns
+        -------
+        Vehicle
+        """
+        bodies = tuple(
+            replace(
+                b,
+                mass=factor * b.mass,
+                pitch_inertia=None if b.pitch_inertia is None else factor * b.pitch_inertia,
+            )
+            for b in self.bodies
+        )
+        suspensions = tuple(
+            replace(
+                s,
+                stiffness=factor * s.stiffness,
+                damping=factor * s.damping,
+                element=None if s.element is None else _ScaledElement(s.element, factor),
+            )
+            for s in self.suspensions
+        )
+        scaled_cars: dict[int, Vehicle] = {}
+        for car, _, _ in self.cars:
+            scaled_cars.setdefault(id(car), car.scaled(factor))
+        cars = tuple((scaled_cars[id(car)], d0, w0) for car, d0, w0 in self.cars)
+        return Vehicle(bodies, suspensions, self.wheels, cars)
 
     @cached_property
     def damping_matrix(self) -> NDArray[np.float64]:
@@ -158,7 +239,11 @@ class Vehicle:
             Complex dynamic stiffness in SI units (N/m, N/rad, N m/m, N m/rad by DOF pair),
             shape ``(n_freq, n_dof, n_dof)``.
         """
-        return _dynamic_stiffness(f, self.mass_matrix, self.damping_matrix, self.stiffness_matrix)
+        out = _dynamic_stiffness(f, self.mass_matrix, self.damping_matrix, self.stiffness_matrix)
+        for element, b in self.elements:
+            k = np.asarray(element.stiffness(np.atleast_1d(np.asarray(f, dtype=float))))
+            out += k[:, None, None] * np.outer(b, b)
+        return out
 
     @cached_property
     def wheel_dofs(self) -> NDArray[np.int64]:
@@ -191,6 +276,8 @@ class Vehicle:
         -------
         WheelCondensation
         """
+        if self.cars:
+            return self._condensed_by_car(f, xp)
         omega = 2.0 * np.pi * xp.asarray(np.atleast_1d(np.asarray(f, dtype=float)))
         omega2 = omega**2
         m, c, k = self._matrices
@@ -198,6 +285,12 @@ class Vehicle:
             (i, j): k[i, j] - omega2 * m[i, j] + (1j * c[i, j]) * omega
             for i, j in self._elimination.pattern
         }
+        f_np = np.atleast_1d(np.asarray(f, dtype=float))
+        for element, vec in self.elements:
+            k_e = xp.asarray(np.asarray(element.stiffness(f_np), dtype=complex))
+            for i, j in self._elimination.pattern:
+                if vec[i] * vec[j] != 0.0:
+                    d[(i, j)] = d[(i, j)] + k_e * (vec[i] * vec[j])
         bad = None
         factors = []
         for p, nb in self._elimination.steps:
@@ -229,6 +322,26 @@ class Vehicle:
             stiffness, recovery = self._dense_at(f, bad, stiffness, recovery, xp)
         return WheelCondensation(stiffness, recovery)
 
+    def _condensed_by_car(self, f: ArrayLike, xp: Any) -> WheelCondensation:
+        """The condensation of a train without couplers: block diagonal, one block per car."""
+        done: dict[int, WheelCondensation] = {}
+        n_w, n_dof = len(self.wheels), len(self.dofs)
+        zero = xp.zeros(np.atleast_1d(np.asarray(f)).shape, dtype=complex)
+        stiffness = [[zero] * n_w for _ in range(n_w)]
+        recovery = [[zero] * n_w for _ in range(n_dof)]
+        groups: list[tuple[int, ...]] = []
+        for car, d0, w0 in self.cars:
+            if id(car) not in done:
+                done[id(car)] = car.condensed_to_wheels(f, xp)
+            cond = done[id(car)]
+            nw = len(car.wheels)
+            for a in range(nw):
+                stiffness[w0 + a][w0 : w0 + nw] = cond.stiffness_entries[a]
+            for i in range(len(car.dofs)):
+                recovery[d0 + i][w0 : w0 + nw] = cond.recovery_entries[i]
+            groups += [tuple(range(w0, w0 + nw))] * len(car.dofs)
+        return WheelCondensation(stiffness, recovery, tuple(groups))
+
     def _dense_at(
         self, f: ArrayLike, bad: Any, stiffness: list[list[Any]], recovery: list[list[Any]], xp: Any
     ) -> tuple[list[list[Any]], list[list[Any]]]:
@@ -237,10 +350,10 @@ class Vehicle:
         order = self._body_then_wheel_order
         n_dof, n_w = int(order.size), int(self.wheel_dofs.size)
         n_b = n_dof - n_w
-        m, c, k = (a[np.ix_(order, order)] for a in self._matrices)
+        full = self.dynamic_stiffness(f_bad)[:, order][:, :, order]
 
         def block(rows: slice, cols: slice) -> NDArray[np.complex128]:
-            return _dynamic_stiffness(f_bad, m[rows, cols], c[rows, cols], k[rows, cols])
+            return full[:, rows, cols]
 
         bodies, wheels = slice(0, n_b), slice(n_b, n_dof)
         x = np.linalg.solve(block(bodies, bodies), block(bodies, wheels))  # D_bb^-1 D_bw
@@ -267,6 +380,8 @@ class Vehicle:
         """The order in which the body DOFs are eliminated, and the entries it touches."""
         m, c, k = self._matrices
         nonzero = (m != 0) | (c != 0) | (k != 0)
+        for _, b in self.elements:
+            nonzero |= np.outer(b, b) != 0
         n = len(self.dofs)
         pattern = {(i, j) for i in range(n) for j in range(i, n) if nonzero[i, j]}
         linked = {i: {j for j in range(n) if j != i and nonzero[i, j]} for i in range(n)}
@@ -309,11 +424,26 @@ class Vehicle:
         for body in self.bodies:
             weight[self.dofs.index(f"{body.name}.bounce")] = body.mass * gravity
         # Solve min over u of the energy with B^T u = 0 (wheels fixed): KKT system
-        k = self.stiffness_matrix
+        k = self.static_stiffness_matrix
         n, m = b.shape
         kkt = np.block([[k, b], [b.T, np.zeros((m, m))]])
         sol = np.linalg.solve(kkt, np.concatenate([weight, np.zeros(m)]))
         return sol[n:]
+
+
+@dataclass(frozen=True)
+class _ScaledElement:
+    """A frequency-dependent element times a constant factor (half a car: 0.5)."""
+
+    element: Any
+    factor: float
+
+    def stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """``factor K*(f)`` in N/m."""
+        out: NDArray[np.complex128] = self.factor * np.asarray(
+            self.element.stiffness(f), dtype=np.complex128
+        )
+        return out
 
 
 def _key(i: int, j: int) -> tuple[int, int]:

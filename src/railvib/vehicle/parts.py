@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -62,7 +63,7 @@ class Attachment:
 
 @dataclass(frozen=True)
 class Suspension:
-    """A vertical spring and viscous damper in parallel between two body points.
+    """A vertical spring, a viscous damper and a frequency-dependent element in parallel.
 
     Parameters
     ----------
@@ -71,9 +72,14 @@ class Suspension:
     upper, lower : Attachment
         The two points it connects.
     stiffness : float
-        Spring stiffness in N/m (> 0).
+        Spring stiffness in N/m (> 0; >= 0 when an `element` is given).
     damping : float
         Viscous damping in N s/m (>= 0).
+    element : object, optional
+        A frequency-dependent element in parallel: any object with a method
+        ``stiffness(f)`` returning the complex stiffness ``K*(f)`` in N/m (a member of
+        the pad family, :data:`railvib.pads.PADS`, e.g. a Maxwell branch or an air
+        spring with its reservoir as a ``generalized_maxwell`` element).
     """
 
     name: str
@@ -81,16 +87,25 @@ class Suspension:
     lower: Attachment
     stiffness: float
     damping: float = 0.0
+    element: Any = None
 
     def __post_init__(self) -> None:
-        _check_positive(f"vehicle.{self.name}.stiffness", self.stiffness, "N/m")
+        if self.element is None:
+            _check_positive(f"vehicle.{self.name}.stiffness", self.stiffness, "N/m")
+        elif not (np.isfinite(self.stiffness) and self.stiffness >= 0):
+            raise CaseError(f"vehicle.{self.name}.stiffness", self.stiffness, "must be >= 0 (N/m)")
         if not (np.isfinite(self.damping) and self.damping >= 0):
             raise CaseError(f"vehicle.{self.name}.damping", self.damping, "must be >= 0 (N s/m)")
 
 
 @dataclass(frozen=True)
 class Wheel:
-    """A wheel-rail contact: the body that carries it (a wheelset) and its x (m)."""
+    """A wheel-rail contact: the body that carries it (a wheelset), its x (m) and its name.
+
+    The name labels the rail under it (``rail@<name>``); empty: ``wheel<j>``, ``j`` its
+    place from the front (from 1).
+    """
 
     body: str
     x: float
+    name: str = ""
