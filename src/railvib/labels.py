@@ -9,9 +9,15 @@ can show the labels without loading the numerical stack.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 
-__all__ = ["displacement_unit", "leading_car_label", "rail_label", "response_labels"]
+__all__ = [
+    "displacement_unit",
+    "leading_car_label",
+    "rail_label",
+    "response_labels",
+    "wheel_name",
+]
 
 
 def rail_label(wheel: int | str) -> str:
@@ -79,3 +85,24 @@ def leading_car_label(label: str) -> str:
         The label of the same response of car 1.
     """
     return f"rail@car1.{label[5:]}" if label.startswith("rail@") else f"car1.{label}"
+
+
+def wheel_name(responses: Iterable[object], index: int) -> str:
+    """How summaries name wheel `index` (0-based): ``wheel 3``, or a train's ``car2.wheel1``.
+
+    Parameters
+    ----------
+    responses : iterable of str
+        The response labels of a result; its ``rail@...`` labels follow the wheels.
+    index : int
+        Position of the wheel along the ``wheel`` axis.
+
+    Returns
+    -------
+    str
+        The wheel's name in a train (``car2.wheel1``), else ``wheel <number>``.
+    """
+    rails = [str(r).removeprefix("rail@") for r in responses if str(r).startswith("rail@")]
+    if index < len(rails) and "." in rails[index]:
+        return rails[index]
+    return f"wheel {index + 1}"

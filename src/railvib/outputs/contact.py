@@ -16,6 +16,7 @@ import xarray as xr
 from scipy.special import ndtr  # Phi, the standard normal CDF (what scipy.stats.norm.cdf calls)
 
 from railvib.grid import trapezoid
+from railvib.labels import wheel_name
 from railvib.outputs.base import OUTPUTS, DerivedOutput
 from railvib.registry import parameter
 
@@ -183,7 +184,7 @@ def contact_line(ds: xr.Dataset) -> str:
     """
     prob = ds["loss_of_contact_probability"]
     j = int(prob.argmax("wheel"))
-    wheel = prob["wheel"].values[j] if "wheel" in prob.coords else j + 1
+    wheel = wheel_name(ds["response"].values if "response" in ds.coords else (), j)
     rms = float(ds["contact_force_rms"].values[j])
     load = float(ds["static_contact_load"].values[j])
     verdict = (
@@ -193,7 +194,7 @@ def contact_line(ds: xr.Dataset) -> str:
     )
     return (
         f"loss of contact: probability {_percent(float(prob.values[j]))} at the worst wheel "
-        f"(wheel {wheel}: contact force RMS {rms:.3g} N, static load {load:.3g} N); "
+        f"({wheel}: contact force RMS {rms:.3g} N, static load {load:.3g} N); "
         f"threshold {_percent(loss_of_contact_threshold(ds))}: {verdict}"
     )
 

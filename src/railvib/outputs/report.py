@@ -6,6 +6,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from railvib.labels import wheel_name
 from railvib.outputs.comfort import mean_comfort_category
 from railvib.outputs.octave import REFERENCES
 
@@ -143,7 +144,7 @@ def criteria_lines(ds: xr.Dataset) -> list[str]:
         j = int(np.argmax(factor.values))
         lines.append(
             f"wheel-rail forces: dynamic load factor 1 + 3 sigma/P0 = {float(factor[j]):.3g} "
-            f"at the worst wheel (wheel {int(ds['wheel'].values[j])}: 3 sigma = "
+            f"at the worst wheel ({wheel_name(ds['response'].values, j)}: 3 sigma = "
             f"{float(ds['dynamic_load_3sigma'].values[j]):.3g} N)"
         )
     if "octave_level_acceleration" in ds:
