@@ -129,6 +129,12 @@ class NonstationarySection(Section):
     map_times: int = Field(
         101, ge=2, le=5000, description="instants of the time-frequency map of the PSDs"
     )
+    map_frequencies: int = Field(
+        200,
+        ge=2,
+        le=5000,
+        description="frequencies (log-spaced over the case's [frequency] band) of the map",
+    )
     first_passage_levels: list[float] = Field(
         default_factory=lambda: [3.0, 4.0],
         max_length=20,
