@@ -44,7 +44,9 @@ class NonstationaryRun:
     settings: NonstationarySection
 
 
-def check_duration(profile: SpeedProfile, slowest_mode_hz: float, field: str) -> None:
+def check_duration(
+    profile: SpeedProfile, slowest_mode_hz: float, field: str, value: object
+) -> None:
     """Refuse a run shorter than one period of the slowest mode (it would show no response).
 
     Parameters
@@ -55,6 +57,8 @@ def check_duration(profile: SpeedProfile, slowest_mode_hz: float, field: str) ->
         Natural frequency of the slowest mode, Hz.
     field : str
         The case key that sets the duration, for the error.
+    value : object
+        Its value, for the error.
 
     Raises
     ------
@@ -72,9 +76,9 @@ def check_duration(profile: SpeedProfile, slowest_mode_hz: float, field: str) ->
         )
         raise CaseError(
             field,
-            f"{profile.duration:.4g} s of run",
-            f"must last >= {period:.4g} s, one period of the slowest mode "
-            f"({slowest_mode_hz:.3g} Hz){hint}",
+            value,
+            f"a run of {profile.duration:.4g} s: it must last >= {period:.4g} s, one period "
+            f"of the slowest mode ({slowest_mode_hz:.3g} Hz){hint}",
         )
 
 
@@ -112,7 +116,9 @@ def build_run(case: Case) -> NonstationaryRun:
     profile = SpeedProfile(t, x, v)
     vehicle = build_vehicle(case)
     model = RigidTrackVehicle(vehicle, contact_stiffness(case, vehicle))
-    check_duration(profile, model.slowest_mode_hz, _duration_field(case))
+    field = _duration_field(case)
+    value = getattr(case.speed_profile, field.split(".")[-1])
+    check_duration(profile, model.slowest_mode_hz, field, value)
     dt = check_time_step(case.speed_profile, settings, case.speed_kmh)
     band = SpatialBand.log_spaced(
         build_spectrum(case),

@@ -90,6 +90,13 @@ def _lyapunov(a: NDArray[np.float64], qq: NDArray[np.float64]) -> NDArray[np.flo
     return 0.5 * (p + p.T)
 
 
+def _system(
+    a: NDArray[np.float64], bh: NDArray[np.float64], f: NDArray[np.float64], v: float
+) -> NDArray[np.float64]:
+    """The joint state matrix ``[[A, B H], [0, v F]]`` at speed `v` (m/s)."""
+    return np.block([[a, bh], [np.zeros((f.shape[0], a.shape[0])), v * f]])
+
+
 def covariance_response(
     model: RigidTrackVehicle, shaping: ShapingFilter, profile: SpeedProfile, t: ArrayLike
 ) -> NDArray[np.float64]:
@@ -124,8 +131,7 @@ def covariance_response(
     c_aug = np.hstack([c, d @ shaping.h[None, :]])
 
     def system(time: float) -> NDArray[np.float64]:
-        v = float(profile.speed(time))
-        return np.block([[a, bh], [np.zeros((m, n)), v * shaping.f]])
+        return _system(a, bh, shaping.f, float(profile.speed(time)))
 
     v0 = float(profile.speed(0.0))
     if v0 > 0:
@@ -140,7 +146,11 @@ def covariance_response(
         return (ap + ap.T + float(profile.speed(time)) * noise).reshape(-1)
 
     t = np.asarray(t, dtype=float)
-    scale = np.sqrt(np.outer(np.diag(p0), np.diag(p0))).reshape(-1) + 1e-300
+    # absolute tolerance per entry from the stationary covariance at the top speed, where
+    # every state moves (at a start from rest the velocities are 0 at first)
+    v_top = float(profile.v_max)
+    d = np.diag(_lyapunov(_system(a, bh, shaping.f, v_top), v_top * noise))
+    scale = np.sqrt(np.outer(d, d)).reshape(-1)
     sol = solve_ivp(
         rhs,
         (float(t[0]), float(t[-1])),
