@@ -51,7 +51,8 @@ CASES = {
     ),
     "same-start-and-end": (_uniform(40.0, 40.0), "speed_profile.v_end_kmh", "constant"),
     "time-not-increasing": (
-        '[speed_profile]\nkind = "table"\ntime_s = [0.0, 2.0, 2.0]\nspeeds_kmh = [10.0, 20.0, 30.0]\n',
+        '[speed_profile]\nkind = "table"\ntime_s = [0.0, 2.0, 2.0]\n'
+        "speeds_kmh = [10.0, 20.0, 30.0]\n",
         "speed_profile.time_s[2]",
         "increase",
     ),

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from railvib.coupling import coupled_response
 from railvib.nonstationary import (

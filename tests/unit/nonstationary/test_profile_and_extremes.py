@@ -7,7 +7,12 @@ import pytest
 from scipy import integrate
 from scipy.special import erfc
 
-from railvib.case.profile import NonstationarySection, SpeedProfileSection, knots
+from railvib.case.profile import (
+    NonstationarySection,
+    SpeedProfileSection,
+    check_time_step,
+    knots,
+)
 from railvib.nonstationary import SpeedProfile, first_passage_probability, upcrossing_rate
 from railvib.nonstationary.quasi import validity_parameter
 
@@ -53,7 +58,6 @@ def test_default_time_step_is_half_the_nyquist_step():
         kind="uniform", v_start_kmh=72.0, v_end_kmh=0.0, acceleration_ms2=1.0
     )
     settings = NonstationarySection(wavelength_min_m=2.0)
-    from railvib.case.profile import check_time_step
 
     # f_top = 20 m/s / 2 m = 10 Hz: Nyquist step 0.05 s, half of it 0.025 s
     assert check_time_step(section, settings, 72.0) == pytest.approx(0.025)
