@@ -238,7 +238,7 @@ def _uniform(p: SpeedProfileSection) -> _Knots:
     if (p.acceleration_ms2 is None) == (p.duration_s is None):
         raise CaseError(
             "speed_profile.acceleration_ms2",
-            p.acceleration_ms2,
+            "<missing>" if p.acceleration_ms2 is None else p.acceleration_ms2,
             "give exactly one of acceleration_ms2 (m/s^2) and duration_s (s)",
         )
     duration = abs(v1 - v0) / p.acceleration_ms2 if p.acceleration_ms2 is not None else p.duration_s
@@ -261,7 +261,9 @@ def _table(p: SpeedProfileSection) -> _Knots:
     assert p.speeds_kmh is not None
     if (p.time_s is None) == (p.position_m is None):
         raise CaseError(
-            "speed_profile.time_s", p.time_s, "give exactly one of time_s (s) and position_m (m)"
+            "speed_profile.time_s",
+            "<missing>" if p.time_s is None else p.time_s,
+            "give exactly one of time_s (s) and position_m (m)",
         )
     axis_name = "time_s" if p.time_s is not None else "position_m"
     axis = np.asarray(p.time_s if p.time_s is not None else p.position_m, dtype=float)
