@@ -9,10 +9,13 @@ linear over the step (``Omega_k`` times the chord of ``s``):
 
     eta_{n+1} = e^{lambda h} eta_n + beta_n (e^{i w h} - e^{lambda h}) / (i w - lambda),
 
-``w = Omega_k (s_{n+1} - s_n) / h``, all wavenumbers and modes at once. The only
-error is the phase's departure from its chord, at most ``Omega_max |a_max| h^2 / 8``
-rad in the input (the response's relative error is of that size): 2.5e-5 for
-``wavelength_min = 1 m``, 1 m/s^2 and ``h = 5.6 ms``. Then ``sigma_y^2(t) = sum_k
+``w = Omega_k (s_{n+1} - s_n) / h``, all wavenumbers and modes at once. The errors
+are the phase's departure from its chord, at most ``Omega_max |a_max| h^2 / 8`` rad
+(:func:`phase_error_bound`), and the step of the input's frequency at each step
+boundary (``Omega a h``), which rings lightly damped fast modes (the wheelsets on
+their contact springs): for the paper's car braking at 1 m/s^2 with wavelengths down
+to 1 m, 4.6e-4 of the largest RMS at the default step (half the Nyquist step), 2.4 %
+at the Nyquist step (docs/nonstationary.md). Then ``sigma_y^2(t) = sum_k
 |y_k(t)|^2`` and ``S_y(Omega; t) = |y_k(t)|^2 / dOmega_k`` (Lin's non-stationary
 PEM; Lin, Zhang, Zhao and Williams, J. Sound Vib. 1997; Zhang, Lin et al.,
 Vehicle Syst. Dyn. 2010), and the spectral moments of the crossing rates from the
@@ -82,7 +85,22 @@ def time_axis(duration: float, dt: float) -> NDArray[np.float64]:
 
 
 def phase_error_bound(band: SpatialBand, profile: SpeedProfile, dt: float) -> float:
-    """Largest phase error of the input over a step, ``Omega_max |a|_max h^2 / 8``, rad."""
+    """Largest phase error of the input over a step, ``Omega_max |a|_max h^2 / 8``, rad.
+
+    Parameters
+    ----------
+    band : SpatialBand
+        The wavenumbers (rad/m).
+    profile : SpeedProfile
+        The speed profile (its largest acceleration, m/s^2).
+    dt : float
+        Time step, s.
+
+    Returns
+    -------
+    float
+        The bound in rad.
+    """
     return float(band.wavenumber.max() * profile.acceleration_max * dt**2 / 8.0)
 
 

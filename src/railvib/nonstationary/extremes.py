@@ -81,7 +81,8 @@ def first_passage_probability(
     level : array_like
         Level b per output, ``(n_out,)`` (output unit).
     variance, velocity_variance, cross, first_moment : array_like
-        ``E[y^2]``, ``E[y'^2]``, ``E[y y']`` and ``l1``, ``(n_t, n_out)``.
+        ``E[y^2]``, ``E[y'^2]``, ``E[y y']`` and ``l1``, ``(n_t, n_out)``, in output unit^2,
+        per s^2, per s, per s.
     model : {"poisson", "vanmarcke"}
         The hazard (module docstring).
 

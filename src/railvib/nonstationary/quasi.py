@@ -30,8 +30,8 @@ TIME_BLOCK = 16384
 
 #: the validity parameter below which the quasi-stationary estimate is taken to hold: a
 #: speed change of 10 % over one period of the slowest mode (the paper's car braking at
-#: 1 m/s^2 from 80 km/h has 0.058 at the start, where the RMS of the two differ by < 1 %;
-#: docs/nonstationary.md)
+#: 1 m/s^2 from 80 km/h: 0.058 at the start; where it is <= 0.1 the quasi-stationary and
+#: exact RMS differ by <= 4 %; docs/nonstationary.md)
 QS_LIMIT = 0.1
 
 

@@ -60,9 +60,10 @@ def _quarter_car() -> Vehicle:
 
 
 def test_step_error_is_within_the_phase_bound():
-    # hard braking (8 m/s^2) with short waves: the only approximation is the input phase's
-    # chord over a step, at most Omega a h^2 / 8; the response's relative error is of that
-    # order (a factor 2 allows the response to amplify the phase error near resonance)
+    # hard braking (8 m/s^2) with short waves; the input phase's chord over a step is off
+    # by at most Omega a h^2 / 8, and a quarter car has no lightly damped fast mode for the
+    # frequency steps to ring (module docstring), so the response's error is of that order
+    # (a factor 2 allows the response to amplify the phase error near resonance)
     model = RigidTrackVehicle(_quarter_car(), 2e5)
     band = SpatialBand.log_spaced(FRAClass(5), 0.5, 50.0, 48)
     profile = SpeedProfile.uniform(16.0, 0.0, 8.0)
