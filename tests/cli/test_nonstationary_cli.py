@@ -69,3 +69,17 @@ def test_nonstationary_run_with_plots_replaces_an_earlier_run(tmp_path, monkeypa
     assert second == {"results.nc", "rms_time.csv", "summary.md", "notes.txt"}
     with xr.open_dataset(tmp_path / "out" / "results.nc") as ds:
         assert ds.attrs["method"] == "both"
+
+
+def test_the_docs_example_case_builds():
+    from pathlib import Path
+
+    from railvib.case import load_case
+    from railvib.nonstationary import build_run
+
+    root = Path(__file__).resolve().parents[2]
+    run = build_run(load_case(root / "docs" / "examples" / "braking.toml"))
+    # 80 km/h = 22.22 m/s over 1 m waves: Nyquist step 1 / (2 * 22.22) s, half of it by default
+    assert run.dt == pytest.approx(1.0 / (4 * 80 / 3.6))
+    assert run.profile.duration == pytest.approx(80 / 3.6)
+    assert run.band.wavenumber.size == 1000

@@ -9,13 +9,15 @@ linear over the step (``Omega_k`` times the chord of ``s``):
 
     eta_{n+1} = e^{lambda h} eta_n + beta_n (e^{i w h} - e^{lambda h}) / (i w - lambda),
 
-``w = Omega_k (s_{n+1} - s_n) / h``, all wavenumbers and modes at once. The errors
-are the phase's departure from its chord, at most ``Omega_max |a_max| h^2 / 8`` rad
-(:func:`phase_error_bound`), and the step of the input's frequency at each step
-boundary (``Omega a h``), which rings lightly damped fast modes (the wheelsets on
-their contact springs): for the paper's car braking at 1 m/s^2 with wavelengths down
-to 1 m, 4.6e-4 of the largest RMS at the default step (half the Nyquist step), 2.4 %
-at the Nyquist step (docs/nonstationary.md). Then ``sigma_y^2(t) = sum_k
+``w = Omega_k (s_{n+1} - s_n) / h``, all wavenumbers and modes at once, plus the
+first-order term of the phase's departure from its chord, ``Omega a u (u - h) / 2``
+(:func:`_curvature`, in closed form). The chord alone is off by at most
+``delta = Omega_max |a_max| h^2 / 8`` rad (:func:`phase_error_bound`), and its
+frequency steps at each step boundary ring the lightly damped fast modes (the wheelsets
+on their contact springs): for the paper's car braking at 1 m/s^2 with wavelengths
+down to 1 m that was 2.4 % of the largest RMS at the Nyquist step; with the
+correction the error is of order ``delta^2``: 3e-7 at the Nyquist step, 1e-7 at the
+default step (half of it; docs/nonstationary.md). Then ``sigma_y^2(t) = sum_k
 |y_k(t)|^2`` and ``S_y(Omega; t) = |y_k(t)|^2 / dOmega_k`` (Lin's non-stationary
 PEM; Lin, Zhang, Zhao and Williams, J. Sound Vib. 1997; Zhang, Lin et al.,
 Vehicle Syst. Dyn. 2010), and the spectral moments of the crossing rates from the
@@ -85,7 +87,10 @@ def time_axis(duration: float, dt: float) -> NDArray[np.float64]:
 
 
 def phase_error_bound(band: SpatialBand, profile: SpeedProfile, dt: float) -> float:
-    """Largest phase error of the input over a step, ``Omega_max |a|_max h^2 / 8``, rad.
+    """Largest phase error of the input's chord over a step, ``Omega_max |a|_max h^2 / 8``, rad.
+
+    The integrator takes the first-order term of that error exactly; what is left of the
+    response's relative error is of the order of the square of this bound.
 
     Parameters
     ----------
@@ -182,8 +187,11 @@ def exact_response(
             integral = e_iw[:, None] - e_lam[None, :]
             with np.errstate(divide="ignore", invalid="ignore"):  # the series covers z ~ 0
                 integral /= work
+            accel = (v[n] - v[n - 1]) / h
+            if accel != 0.0:  # the phase's parabola off its chord, to first order
+                integral += (0.5j * accel * om)[:, None] * _curvature(integral, e_iw, work, h)
             if series.any():
-                _series_fix(integral, work, e_lam, h, series)
+                _series_fix(integral, work, e_lam, h, series, 0.5j * accel * om)
             eta *= e_lam[None, :]
             integral *= q
             integral *= prev_phase[:, None]
@@ -213,17 +221,40 @@ def exact_response(
     return MomentHistory(t, out["var"], out["dvar"], out["cross"], out["l1"], map_index, psd)
 
 
+def _curvature(
+    integral: NDArray[np.complex128],
+    e_iw: NDArray[np.complex128],
+    iw_lam: NDArray[np.complex128],
+    h: float,
+) -> NDArray[np.complex128]:
+    """``int_0^h e^{lambda (h - u)} e^{i w u} u (u - h) du`` from the step's integral.
+
+    With ``e^{lambda h} I_k = int_0^h e^{lambda (h - u)} e^{i w u} u^k du``, ``I_1 = (h e^{i w
+    h} - I_0) / z`` and ``I_2 = (h^2 e^{i w h} - 2 I_1) / z`` (``z = i w - lambda``; the
+    recursion loses ``1e-16 / |z h|^2`` of its digits, 1e-12 at the series' threshold).
+    The true phase over a step is the chord plus ``Omega a u (u - h) / 2``; this is the
+    first-order term of its exponential, so the frequency's step at a step boundary does
+    not ring the lightly damped modes.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):  # the series covers z ~ 0
+        i1 = (h * e_iw[:, None] - integral) / iw_lam
+        return (h * h * e_iw[:, None] - 2.0 * i1) / iw_lam - h * i1
+
+
 def _series_fix(
     integral: NDArray[np.complex128],
     iw_lam: NDArray[np.complex128],
     e_lam: NDArray[np.complex128],
     h: float,
     modes: NDArray[np.bool_],
+    curve: NDArray[np.complex128],
 ) -> None:
     """The step integrals of the lightly damped `modes` where ``|z| <= _SERIES``, as a series.
 
     ``(e^{i w h} - e^{lambda h}) / (i w - lambda) = h e^{lambda h} (e^z - 1) / z`` with
-    ``z = (i w - lambda) h``; the series to ``z^4`` is exact to ``|z|^5 / 720 < 2e-13``.
+    ``z = (i w - lambda) h``, the series to ``z^4`` exact to ``|z|^5 / 720 < 2e-13``; and
+    `curve` (``i Omega a / 2``, per wavenumber) times :func:`_curvature`, ``-h^3
+    e^{lambda h} sum_k z^k / (k! (k + 2)(k + 3))``, to ``z^3``.
     """
     cols = np.flatnonzero(modes)
     z = iw_lam[:, cols] * h
@@ -231,8 +262,10 @@ def _series_fix(
     if small.any():
         zs = z[small]
         series = h * (1 + zs / 2 * (1 + zs / 3 * (1 + zs / 4 * (1 + zs / 5))))
+        bend = -(h**3) * (1 / 6 + zs * (1 / 12 + zs * (1 / 40 + zs / 180)))
+        rows = np.broadcast_to(curve[:, None], z.shape)[small]
         block = integral[:, cols]
-        block[small] = series * np.broadcast_to(e_lam[cols], z.shape)[small]
+        block[small] = (series + rows * bend) * np.broadcast_to(e_lam[cols], z.shape)[small]
         integral[:, cols] = block
 
 

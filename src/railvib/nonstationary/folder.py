@@ -76,7 +76,12 @@ def summary_lines(ds: xr.Dataset) -> list[str]:
     list of str
         Markdown lines (a table per quantity, then notes).
     """
-    lines = []
+    v = 3.6 * ds["speed"].values
+    lines = [
+        f"non-stationary run: {v[0]:.1f} -> {v[-1]:.1f} km/h (from {v.min():.1f} to "
+        f"{v.max():.1f}) over {float(ds.time[-1]):.4g} s and {float(ds.position[-1]):.4g} m, "
+        "on a rigid track (the case's [track] and speed_kmh are not used)",
+    ]
     for name, dim in (("acceleration", "response"), ("force", "wheel")):
         exact, qs = ds.get(f"rms_{name}"), ds.get(f"rms_{name}_qs")
         if exact is None and qs is None:

@@ -107,3 +107,15 @@ def test_poisson_first_passage_of_a_stationary_process():
     van = first_passage_probability(t, [b], l0 * ones, l2 * ones, 0 * ones, l1 * ones, "vanmarcke")
     factor = (1 - np.exp(-np.sqrt(np.pi / 2) * q**1.2 * b)) / (1 - np.exp(-(b**2) / 2))
     assert float(van[0]) == pytest.approx(1 - (1 - p0) * np.exp(-2 * nu * factor * 10.0), rel=1e-12)
+
+
+def test_frequency_map_of_a_flat_wavenumber_spectrum():
+    from railvib.nonstationary import frequency_map
+
+    # S = 1 per rad/m over 1..10 rad/m at 2 pi m/s: f = Omega, S_f = 2 pi / v = 1 per Hz
+    om = np.geomspace(1.0, 10.0, 50)
+    psd = np.ones((2, om.size, 1))
+    f = np.array([0.5, 2.0, 5.0, 20.0])
+    out = frequency_map(psd, om, np.array([2 * np.pi, 0.0]), f)
+    np.testing.assert_allclose(out[0, :, 0], [0.0, 1.0, 1.0, 0.0])
+    assert not out[1].any()  # at rest everything is at 0 Hz
