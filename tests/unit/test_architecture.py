@@ -52,6 +52,7 @@ LAYERS = {
     "validation": 9,
     "sweep": 9,
     "reproduce": 9,
+    "nonstationary": 9,
     "cli": 10,
     "__init__": 10,
 }

@@ -14,6 +14,7 @@ from typing import Any, Literal
 import tomli_w
 from pydantic import Field, create_model, field_validator, model_validator
 
+from railvib.case.profile import NonstationarySection, SpeedProfileSection, check_time_step
 from railvib.case.sections import Section, section_model, table_section
 from railvib.errors import CaseError
 from railvib.outputs import ContactCheck
@@ -450,6 +451,34 @@ class Case(Section):
     criteria: CriteriaSection | None = Field(
         None, description="settings of the engineering criteria (docs/criteria.md)"
     )
+    mode: Literal["stationary", "nonstationary"] = Field(
+        "stationary",
+        description="stationary: one speed (speed_kmh); nonstationary: the speed of "
+        "[speed_profile] (docs/nonstationary.md)",
+    )
+    speed_profile: SpeedProfileSection | None = Field(
+        None, description='speed against time, for mode = "nonstationary"'
+    )
+    nonstationary: NonstationarySection | None = Field(
+        None, description="settings of a non-stationary run (omitted: the defaults)"
+    )
+
+    @model_validator(mode="after")
+    def _profile(self) -> Case:
+        if self.mode == "nonstationary":
+            if self.speed_profile is None:
+                raise CaseError("speed_profile", "<missing>", 'required by mode = "nonstationary"')
+            check_time_step(
+                self.speed_profile,
+                self.nonstationary or NonstationarySection.model_validate({}),
+                self.speed_kmh,
+            )
+        elif self.speed_profile is not None or self.nonstationary is not None:
+            field = "speed_profile" if self.speed_profile is not None else "nonstationary"
+            raise CaseError(
+                field, "<table>", 'used by mode = "nonstationary" only: set mode, or remove it'
+            )
+        return self
 
     @field_validator("title")
     @classmethod

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import click
 
+from railvib.case import load_case
 from railvib.errors import LinearModelInvalid
 from railvib.solve import run_to_folder
 
@@ -35,7 +36,13 @@ def run_case_command(
     force : bool
         Run a grid of more than 2,000,000 frequencies.
     """
-    out = run_to_folder(case_file, outdir, plots=plots, force=force)
+    case = load_case(case_file, force=force)
+    if case.mode == "nonstationary":  # docs/nonstationary.md
+        from railvib.cli.nonstationary import run_nonstationary_command
+
+        run_nonstationary_command(case, outdir, plots=plots)
+        return
+    out = run_to_folder(case, outdir, plots=plots, force=force)
     click.echo(out.text())
     click.echo(f"written to {outdir}/")
     if strict and not out.linear_model_valid:
