@@ -72,6 +72,11 @@ VANISHING_LOSS_FACTOR = 1e-12
 #: precision degrades then (docs/design/0002-track-solver.md, "An open defect")
 COINCIDENCE_WINDOW = 1e-2
 
+#: below this ``|a^2 + b^2|`` (the Timoshenko span's two wavenumbers, squared and times
+#: d^2) the bay's characteristic coefficients come from its entries, which are then no
+#: larger than ``cosh 2``
+SMALL_WAVENUMBERS = 4.0
+
 #: mirror image ``x -> -x`` of a state ``(w, d psi, d^2 psi', d^3 v)``
 _MIRROR = np.array([1.0, -1.0, 1.0, -1.0])
 
@@ -389,11 +394,23 @@ class PeriodicTrack(TrackModel):
         f = _as_freq(f)
         if self.rail.shear_stiffness is None:
             return field_transfer(self._beta4(f), length)
-        d = self.sleeper_spacing
-        ei = self._ei
-        kga = self.rail.shear_stiffness * self._loss
-        rotary = self.rail.rotary_inertia * (2.0 * np.pi * f) ** 2 * d**2 / ei
-        return timoshenko_transfer(self._beta4(f), ei / (kga * d**2), rotary, length)
+        return timoshenko_transfer(*self._timoshenko_terms(f)[:3], length)
+
+    def _timoshenko_terms(
+        self, f: NDArray[np.float64]
+    ) -> tuple[NDArray[np.complex128], complex, NDArray[np.complex128], NDArray[np.complex128]]:
+        """``beta4``, ``eps = EI* / (kGA* d^2)``, ``rho = rho_I omega^2 d^2 / EI*`` and ``rho eps``.
+
+        ``rho eps = rho_I omega^2 / kGA*`` is formed directly (1 at the cut-off frequency).
+        """
+        shear = self.rail.shear_stiffness
+        assert shear is not None  # only called for a Timoshenko rail
+        d, ei = self.sleeper_spacing, self._ei
+        kga = shear * self._loss
+        omega2 = (2.0 * np.pi * f) ** 2
+        rotary = np.asarray(self.rail.rotary_inertia * omega2 * d**2 / ei, dtype=np.complex128)
+        rho_eps = np.asarray(self.rail.rotary_inertia * omega2 / kga, dtype=np.complex128)
+        return self._beta4(f), ei / (kga * d**2), rotary, rho_eps
 
     @fill_doc(_SHARED)
     def cell_transfer(self, f: ArrayLike) -> NDArray[np.complex128]:
@@ -430,8 +447,7 @@ class PeriodicTrack(TrackModel):
         half = self.span_transfer(f, 0.5)
         pad = self._pad_hat(f)
         if self.rail.is_timoshenko:
-            _warn_if_cut_off_coincides(self, f)
-            coefficients = _characteristic(_cell(half, pad))
+            coefficients = _timoshenko_characteristic(half, *self._timoshenko_terms(f), pad)
         else:
             coefficients = _euler_characteristic(self._beta4(f), pad)
         mu_small, mu_big = _propagation_constants(*coefficients)
@@ -720,7 +736,9 @@ def _mirror(vec: NDArray[np.complex128], pad: NDArray[np.complex128]) -> NDArray
 
 
 def _propagation_constants(
-    c1: NDArray[np.complex128], c2m2: NDArray[np.complex128]
+    c1: NDArray[np.complex128],
+    c2m2: NDArray[np.complex128],
+    disc: NDArray[np.complex128] | None = None,
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
     """The two small (``|mu| <= 1``) eigenvalues and their large partners ``1/mu``.
 
@@ -729,9 +747,11 @@ def _propagation_constants(
     ``c2`` the sum of its principal 2x2 minors). The larger root is formed without
     cancellation and the smaller one as ``(c2 - 2) / lambda_large``; ``lambda^2 - 4`` as
     ``(lambda - 2)(lambda + 2)``, which keeps the digits of ``mu`` near a band edge
-    (``lambda = +-2``, the pinned-pinned frequency).
+    (``lambda = +-2``, the pinned-pinned frequency). `disc`, the discriminant
+    ``c1^2 - 4 (c2 - 2)``, may be given in a form that keeps its digits where the two
+    ``lambda`` (nearly) coincide.
     """
-    disc = np.sqrt(c1**2 - 4.0 * c2m2)
+    disc = np.sqrt(c1**2 - 4.0 * c2m2 if disc is None else disc)
     disc = np.where(np.real(np.conj(c1) * disc) >= 0, disc, -disc)
     lam_big = 0.5 * (c1 + disc)
     lam_big = np.where(lam_big == 0, 1.0, lam_big)  # c1 = c2 - 2 = 0: both roots 0
@@ -773,6 +793,61 @@ def _euler_characteristic(
         cos, cosh, sin, sinh = np.cos(z), np.cosh(z), np.sin(z), np.sinh(z)
         c2m2[large] = 4.0 * cos * cosh + pad[large] * (cosh * sin - cos * sinh) / z**3
     return c1, c2m2
+
+
+def _timoshenko_characteristic(
+    half: NDArray[np.complex128],
+    beta4: NDArray[np.complex128],
+    eps: complex,
+    rho: NDArray[np.complex128],
+    rho_eps: NDArray[np.complex128],
+    pad: NDArray[np.complex128],
+) -> tuple[NDArray[np.complex128], ...]:
+    """``c1`` and ``c2 - 2`` of the Timoshenko bay in closed form (no cancellation).
+
+    The span's wavenumbers (times d) ``a`` (propagating) and ``b`` (evanescent below the
+    cut-off, propagating above it: ``b^2 < 0``) solve ``s^4 + (rho + eps beta4) s^2 -
+    beta4 (1 - rho eps) = 0`` with ``s^2 = b^2, -a^2``; the span's displacement per unit
+    ``v``, ``B14(x) = alpha sin(a x) + gamma sinh(b x)``, has
+    ``alpha a = -(1 + eps^2 beta4 + eps b^2) / (a^2 + b^2)`` and
+    ``gamma b = (1 + eps^2 beta4 - eps a^2) / (a^2 + b^2)``. The pad's shear jump is a
+    rank-one change of the span's ``exp(A)``, whence
+    ``c1 = 2 cos a + 2 cosh b - pad B14(1)`` and
+    ``c2 - 2 = 4 cos a cosh b - 2 pad (alpha sin a cosh b + gamma cos a sinh b)``
+    (docs/design/0002-track-solver.md). Everything is even in ``a`` and in ``b``
+    (``sin a / a``, ``sinh b / b``), so no branch is chosen and the forms hold on both
+    sides of the cut-off and at it (``b = 0``). From the entries of ``T`` (size
+    ``cosh b``) ``c2`` would lose ``cosh^2 b`` of its digits. Where ``|a^2 + b^2| <``
+    :data:`SMALL_WAVENUMBERS` the divided differences in ``alpha`` and ``gamma`` would
+    cancel instead, and the entries of ``T`` (no larger than ``cosh 2``) are used there:
+    ``half`` is the half-span transfer matrix, ``(n_freq, 4, 4)``.
+    """
+    c1, c2m2, disc = np.empty_like(beta4), np.empty_like(beta4), np.empty_like(beta4)
+    q = rho + eps * beta4
+    r = np.sqrt((rho - eps * beta4) ** 2 + 4.0 * beta4)  # a^2 + b^2, without cancellation
+    r = np.where(np.real(np.conj(q) * r) >= 0, r, -r)
+    small = np.abs(r) < SMALL_WAVENUMBERS
+    if np.any(small):
+        c1[small], c2m2[small] = _characteristic(_cell(half[small], pad[small]))
+        disc[small] = c1[small] ** 2 - 4.0 * c2m2[small]
+    large = ~small
+    if np.any(large):
+        beta4, q, r, rho_eps, pad = beta4[large], q[large], r[large], rho_eps[large], pad[large]
+        a2 = 0.5 * (q + r)
+        b2 = 2.0 * beta4 * (1.0 - rho_eps) / (q + r)  # the small root as product / large
+        a, b = np.sqrt(a2), np.sqrt(b2)
+        cos, cosh = np.cos(a), np.cosh(b)
+        sinc = np.sin(a) / a
+        tiny = np.abs(b2) < 1e-8  # sinh(b) / b to its series (error |b|^6 / 5040)
+        sinhc = np.where(tiny, 1.0 + b2 / 6.0 + b2 * b2 / 120.0, np.sinh(b) / np.where(tiny, 1.0, b))
+        shear = 1.0 + eps * eps * beta4
+        alpha_sin = -(shear + eps * b2) * sinc / r  # alpha sin(a)
+        gamma_sinh = (shear - eps * a2) * sinhc / r  # gamma sinh(b)
+        c1[large] = 2.0 * (cos + cosh) - pad * (alpha_sin + gamma_sinh)
+        c2m2[large] = 4.0 * cos * cosh - 2.0 * pad * (alpha_sin * cosh + gamma_sinh * cos)
+        split = 2.0 * (cos - cosh) + pad * (gamma_sinh - alpha_sin)
+        disc[large] = split * split + 4.0 * pad * pad * alpha_sin * gamma_sinh
+    return c1, c2m2, disc
 
 
 def _bloch_vector(
