@@ -37,6 +37,7 @@ from railvib.track.beam import (
     timoshenko_transfer,
 )
 from railvib.track.stacked import receptance_entries, stacked_waves
+from railvib.track.timoshenko import Span, bay_waves, span_terms
 
 __all__ = ["MAX_BAY_WAVENUMBER", "PeriodicTrack", "Rail", "TrackWaves"]
 
@@ -447,11 +448,11 @@ class PeriodicTrack(TrackModel):
         half = self.span_transfer(f, 0.5)
         pad = self._pad_hat(f)
         if self.rail.is_timoshenko:
-            coefficients = _timoshenko_characteristic(half, *self._timoshenko_terms(f), pad)
+            mu_small, vec = _timoshenko_waves(half, self._timoshenko_terms(f), pad)
+            mu_big = 1.0 / mu_small
         else:
-            coefficients = _euler_characteristic(self._beta4(f), pad)
-        mu_small, mu_big = _propagation_constants(*coefficients)
-        vec = _bloch_vector(half, pad, mu_small)
+            mu_small, mu_big = _propagation_constants(*_euler_characteristic(self._beta4(f), pad))
+            vec = _bloch_vector(half, pad, mu_small)
         partner = _mirror(vec, pad)  # the eigenvector of mu_big
         # the wave that decays to the right in the limit of vanishing loss: the one with
         # |mu| < 1, or, where |mu| cannot tell, the one carrying power to the right
@@ -736,9 +737,7 @@ def _mirror(vec: NDArray[np.complex128], pad: NDArray[np.complex128]) -> NDArray
 
 
 def _propagation_constants(
-    c1: NDArray[np.complex128],
-    c2m2: NDArray[np.complex128],
-    disc: NDArray[np.complex128] | None = None,
+    c1: NDArray[np.complex128], c2m2: NDArray[np.complex128]
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
     """The two small (``|mu| <= 1``) eigenvalues and their large partners ``1/mu``.
 
@@ -747,11 +746,9 @@ def _propagation_constants(
     ``c2`` the sum of its principal 2x2 minors). The larger root is formed without
     cancellation and the smaller one as ``(c2 - 2) / lambda_large``; ``lambda^2 - 4`` as
     ``(lambda - 2)(lambda + 2)``, which keeps the digits of ``mu`` near a band edge
-    (``lambda = +-2``, the pinned-pinned frequency). `disc`, the discriminant
-    ``c1^2 - 4 (c2 - 2)``, may be given in a form that keeps its digits where the two
-    ``lambda`` (nearly) coincide.
+    (``lambda = +-2``, the pinned-pinned frequency).
     """
-    disc = np.sqrt(c1**2 - 4.0 * c2m2 if disc is None else disc)
+    disc = np.sqrt(c1**2 - 4.0 * c2m2)
     disc = np.where(np.real(np.conj(c1) * disc) >= 0, disc, -disc)
     lam_big = 0.5 * (c1 + disc)
     lam_big = np.where(lam_big == 0, 1.0, lam_big)  # c1 = c2 - 2 = 0: both roots 0
@@ -795,59 +792,33 @@ def _euler_characteristic(
     return c1, c2m2
 
 
-def _timoshenko_characteristic(
+def _timoshenko_waves(
     half: NDArray[np.complex128],
-    beta4: NDArray[np.complex128],
-    eps: complex,
-    rho: NDArray[np.complex128],
-    rho_eps: NDArray[np.complex128],
+    terms: tuple[NDArray[np.complex128], complex, NDArray[np.complex128], NDArray[np.complex128]],
     pad: NDArray[np.complex128],
-) -> tuple[NDArray[np.complex128], ...]:
-    """``c1`` and ``c2 - 2`` of the Timoshenko bay in closed form (no cancellation).
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """Propagation constants ``|mu| <= 1`` and Bloch vectors of the Timoshenko bay.
 
-    The span's wavenumbers (times d) ``a`` (propagating) and ``b`` (evanescent below the
-    cut-off, propagating above it: ``b^2 < 0``) solve ``s^4 + (rho + eps beta4) s^2 -
-    beta4 (1 - rho eps) = 0`` with ``s^2 = b^2, -a^2``; the span's displacement per unit
-    ``v``, ``B14(x) = alpha sin(a x) + gamma sinh(b x)``, has
-    ``alpha a = -(1 + eps^2 beta4 + eps b^2) / (a^2 + b^2)`` and
-    ``gamma b = (1 + eps^2 beta4 - eps a^2) / (a^2 + b^2)``. The pad's shear jump is a
-    rank-one change of the span's ``exp(A)``, whence
-    ``c1 = 2 cos a + 2 cosh b - pad B14(1)`` and
-    ``c2 - 2 = 4 cos a cosh b - 2 pad (alpha sin a cosh b + gamma cos a sinh b)``
-    (docs/design/0002-track-solver.md). Everything is even in ``a`` and in ``b``
-    (``sin a / a``, ``sinh b / b``), so no branch is chosen and the forms hold on both
-    sides of the cut-off and at it (``b = 0``). From the entries of ``T`` (size
-    ``cosh b``) ``c2`` would lose ``cosh^2 b`` of its digits. Where ``|a^2 + b^2| <``
-    :data:`SMALL_WAVENUMBERS` the divided differences in ``alpha`` and ``gamma`` would
-    cancel instead, and the entries of ``T`` (no larger than ``cosh 2``) are used there:
-    ``half`` is the half-span transfer matrix, ``(n_freq, 4, 4)``.
+    In closed form (:func:`railvib.track.timoshenko.bay_waves`), except where
+    ``|a^2 + b^2| <`` :data:`SMALL_WAVENUMBERS`: there the divided differences of the
+    closed form would cancel, and the entries of the bay (no larger than ``cosh 2``) and
+    its half-span pencil are used, as for any bay. `terms` are
+    :meth:`PeriodicTrack._timoshenko_terms`; `half` the half-span transfer matrices.
     """
-    c1, c2m2, disc = np.empty_like(beta4), np.empty_like(beta4), np.empty_like(beta4)
-    q = rho + eps * beta4
-    r = np.sqrt((rho - eps * beta4) ** 2 + 4.0 * beta4)  # a^2 + b^2, without cancellation
-    r = np.where(np.real(np.conj(q) * r) >= 0, r, -r)
-    small = np.abs(r) < SMALL_WAVENUMBERS
-    if np.any(small):
-        c1[small], c2m2[small] = _characteristic(_cell(half[small], pad[small]))
-        disc[small] = c1[small] ** 2 - 4.0 * c2m2[small]
-    large = ~small
+    span = span_terms(*terms)
+    mu = np.empty((pad.size, 2), dtype=np.complex128)
+    vec = np.empty((pad.size, 4, 2), dtype=np.complex128)
+    large = np.abs(span.r) >= SMALL_WAVENUMBERS
     if np.any(large):
-        beta4, q, r, rho_eps, pad = beta4[large], q[large], r[large], rho_eps[large], pad[large]
-        a2 = 0.5 * (q + r)
-        b2 = 2.0 * beta4 * (1.0 - rho_eps) / (q + r)  # the small root as product / large
-        a, b = np.sqrt(a2), np.sqrt(b2)
-        cos, cosh = np.cos(a), np.cosh(b)
-        sinc = np.sin(a) / a
-        tiny = np.abs(b2) < 1e-8  # sinh(b) / b to its series (error |b|^6 / 5040)
-        sinhc = np.where(tiny, 1.0 + b2 / 6.0 + b2 * b2 / 120.0, np.sinh(b) / np.where(tiny, 1.0, b))
-        shear = 1.0 + eps * eps * beta4
-        alpha_sin = -(shear + eps * b2) * sinc / r  # alpha sin(a)
-        gamma_sinh = (shear - eps * a2) * sinhc / r  # gamma sinh(b)
-        c1[large] = 2.0 * (cos + cosh) - pad * (alpha_sin + gamma_sinh)
-        c2m2[large] = 4.0 * cos * cosh - 2.0 * pad * (alpha_sin * cosh + gamma_sinh * cos)
-        split = 2.0 * (cos - cosh) + pad * (gamma_sinh - alpha_sin)
-        disc[large] = split * split + 4.0 * pad * pad * alpha_sin * gamma_sinh
-    return c1, c2m2, disc
+        mu[large], vec[large] = bay_waves(Span(*(t[large] for t in span)), pad[large])
+    # the entries (low frequency), and the pencil where the closed form's vector vanishes
+    pencil = ~large | np.any(np.linalg.norm(vec, axis=1) == 0, axis=1)
+    small = ~large
+    if np.any(small):
+        mu[small] = _propagation_constants(*_characteristic(_cell(half[small], pad[small])))[0]
+    if np.any(pencil):
+        vec[pencil] = _bloch_vector(half[pencil], pad[pencil], mu[pencil])
+    return mu, vec
 
 
 def _bloch_vector(
