@@ -68,14 +68,9 @@ WEAK_CROSS_PRODUCT = 1e-3
 #: ``eta_r -> 0+`` (``exp(+i omega t)``), evaluated at this value (docs/design/0002-track-solver.md)
 VANISHING_LOSS_FACTOR = 1e-12
 
-#: relative distance within which a Timoshenko rail's cut-off frequency and one of its
-#: pinned-pinned frequencies coincide, and around the cut-off within which the solver's
-#: precision degrades then (docs/design/0002-track-solver.md, "An open defect")
-COINCIDENCE_WINDOW = 1e-2
-
 #: below this ``|a^2 + b^2|`` (the Timoshenko span's two wavenumbers, squared and times
-#: d^2) the bay's characteristic coefficients come from its entries, which are then no
-#: larger than ``cosh 2``
+#: d^2) the bay's waves come from its entries and its half-span pencil, which are then
+#: no larger than ``cosh 2``, instead of the closed form (:mod:`railvib.track.timoshenko`)
 SMALL_WAVENUMBERS = 4.0
 
 #: mirror image ``x -> -x`` of a state ``(w, d psi, d^2 psi', d^3 v)``
@@ -302,35 +297,6 @@ class PeriodicTrack(TrackModel):
                 return np.asarray(out, dtype=np.float64)
             out.append(f_n)
             n += 1
-
-    def cut_off_coincidence(self, f: ArrayLike) -> NDArray[np.bool_]:
-        """Frequencies where a Timoshenko rail's cut-off meets a pinned-pinned frequency.
-
-        When the cut-off frequency (:attr:`Rail.cut_off_frequency_hz`) lies within
-        :data:`COINCIDENCE_WINDOW` of a pinned-pinned frequency, both wave pairs of the bay
-        have their propagation constants near ``+-1`` at once (a nearly quadruple root)
-        and the wave solution loses precision within that window of the cut-off (measured
-        in docs/design/0002-track-solver.md: reciprocity 4e-9 at 1 % apart, 1.5e-5 at
-        0.1 %, 0.12 where they coincide). :meth:`waves` warns there.
-
-        Parameters
-        ----------
-        f : array_like
-            Frequencies in Hz.
-
-        Returns
-        -------
-        numpy.ndarray of bool
-            True at the frequencies within the window of such a cut-off.
-        """
-        f = np.atleast_1d(np.asarray(f, dtype=float))
-        f_c = self.rail.cut_off_frequency_hz
-        if f_c is None:
-            return np.zeros(f.shape, dtype=bool)
-        f_pp = self.pinned_pinned_frequencies_hz(f_c * (1.0 + COINCIDENCE_WINDOW))
-        if not np.any(np.abs(f_pp / f_c - 1.0) < COINCIDENCE_WINDOW):
-            return np.zeros(f.shape, dtype=bool)
-        return np.abs(f / f_c - 1.0) < COINCIDENCE_WINDOW
 
     # -- dimensionless kernels ------------------------------------------------------------
     @property
@@ -674,22 +640,6 @@ def _warn_if_ill_conditioned(f: NDArray[np.float64], estimate: NDArray[np.float6
             f"~{estimate.max():.1e}); the mid-span response there is physically unbounded "
             f"and is given for a rail loss factor of {VANISHING_LOSS_FACTOR:g}. "
             "Set track.rail.loss_factor (e.g. 0.01) or move the grid point.",
-            SolverWarning,
-            stacklevel=3,
-        )
-
-
-def _warn_if_cut_off_coincides(track: PeriodicTrack, f: NDArray[np.float64]) -> None:
-    """Warn at the frequencies of :meth:`PeriodicTrack.cut_off_coincidence`."""
-    bad = track.cut_off_coincidence(f)
-    if np.any(bad):
-        warnings.warn(
-            f"{int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) lie within "
-            f"{COINCIDENCE_WINDOW:.0%} of the Timoshenko rail's cut-off frequency "
-            f"{track.rail.cut_off_frequency_hz:.6g} Hz, which meets one of its pinned-pinned "
-            "frequencies: the wave solution loses precision there (up to 1e-1 where they "
-            "coincide, docs/design/0002-track-solver.md); change track.rail.shear_stiffness "
-            "or rotary_inertia slightly, or move the grid points.",
             SolverWarning,
             stacklevel=3,
         )

@@ -18,7 +18,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["Span", "bay_characteristic", "bay_waves", "span_terms"]
 
@@ -33,8 +33,9 @@ class Span(NamedTuple):
     ----------
     a2, b2 : numpy.ndarray
         ``a^2`` and ``b^2``.
-    rho : numpy.ndarray
-        ``rho_I omega^2 d^2 / EI*``; ``a^2 - b^2 = rho + eps beta4``.
+    rho_b2, eb_b2 : numpy.ndarray
+        ``rho + b^2 = a^2 - eps beta4`` and ``b^2 + eps beta4`` (their product is
+        ``beta4``), the middle components of the span's waves.
     r : numpy.ndarray
         ``a^2 + b^2 = sqrt((rho - eps beta4)^2 + 4 beta4)`` (no cancellation).
     eb : numpy.ndarray
@@ -57,7 +58,8 @@ class Span(NamedTuple):
 
     a2: NDArray[np.complex128]
     b2: NDArray[np.complex128]
-    rho: NDArray[np.complex128]
+    rho_b2: NDArray[np.complex128]
+    eb_b2: NDArray[np.complex128]
     r: NDArray[np.complex128]
     eb: NDArray[np.complex128]
     beta4: NDArray[np.complex128]
@@ -72,6 +74,11 @@ class Span(NamedTuple):
     b_sinh: NDArray[np.complex128]
     alpha_sin: NDArray[np.complex128]
     gamma_sinh: NDArray[np.complex128]
+
+
+def _complex(values: ArrayLike) -> NDArray[np.complex128]:
+    """`values` as a complex array."""
+    return np.asarray(values, dtype=np.complex128)
 
 
 def span_terms(
@@ -104,6 +111,13 @@ def span_terms(
     a2 = 0.5 * (q + r)
     b2 = 2.0 * beta4 * (1.0 - rho_eps) / (q + r)  # the small root as product / large
     a, b = np.sqrt(a2), np.sqrt(b2)
+    # rho + b^2 = (r + u) / 2 and b^2 + eps beta4 = (r - u) / 2, u = rho - eps beta4, their
+    # product beta4: the larger formed directly, the smaller as beta4 over it
+    u = rho - eb
+    plus_big = np.abs(r + u) >= np.abs(r - u)
+    big = 0.5 * np.where(plus_big, r + u, r - u)
+    other = beta4 / np.where(big == 0, 1.0, big)
+    rho_b2, eb_b2 = np.where(plus_big, big, other), np.where(plus_big, other, big)
     sinc = np.sin(a) / a
     series = np.abs(b2) < _SERIES_B2
     sinhc = np.where(
@@ -112,25 +126,27 @@ def span_terms(
     sin_h, sinh_h = np.sin(0.5 * a), np.sinh(0.5 * b)
     cos_h, cosh_h = np.cos(0.5 * a), np.cosh(0.5 * b)
     return Span(
-        a2=a2,
-        b2=b2,
-        rho=rho,
-        r=r,
-        eb=eb,
-        beta4=beta4,
-        x=2.0 * np.cos(a),
-        y=2.0 * np.cosh(b),
-        x_m=-4.0 * sin_h * sin_h,
-        y_m=4.0 * sinh_h * sinh_h,
-        x_p=4.0 * cos_h * cos_h,
-        y_p=4.0 * cosh_h * cosh_h,
-        y_x=4.0 * np.sin(0.5 * (a + 1j * b)) * np.sin(0.5 * (a - 1j * b)),
-        a_sin=a2 * sinc,
-        b_sinh=b2 * sinhc,
-        # 1 + eps^2 beta4 + eps b^2 = 1 - rho eps + eps a^2 > 1, and
-        # 1 + eps^2 beta4 - eps a^2 = (1 - rho eps) - eps b^2, which vanishes at the cut-off
-        alpha_sin=-(1.0 + eps * (eb + b2)) * sinc / r,
-        gamma_sinh=((1.0 - rho_eps) - eps * b2) * sinhc / r,
+        a2=_complex(a2),
+        b2=_complex(b2),
+        rho_b2=_complex(rho_b2),
+        eb_b2=_complex(eb_b2),
+        r=_complex(r),
+        eb=_complex(eb),
+        beta4=_complex(beta4),
+        x=_complex(2.0 * np.cos(a)),
+        y=_complex(2.0 * np.cosh(b)),
+        x_m=_complex(-4.0 * sin_h * sin_h),
+        y_m=_complex(4.0 * sinh_h * sinh_h),
+        x_p=_complex(4.0 * cos_h * cos_h),
+        y_p=_complex(4.0 * cosh_h * cosh_h),
+        y_x=_complex(4.0 * np.sin(0.5 * (a + 1j * b)) * np.sin(0.5 * (a - 1j * b))),
+        a_sin=_complex(a2 * sinc),
+        b_sinh=_complex(b2 * sinhc),
+        # alpha a r = -(1 + eps^2 beta4 + eps b^2) = -(1 + eps (b^2 + eps beta4)), and
+        # gamma b r = 1 + eps^2 beta4 - eps a^2 = (1 - rho eps)(rho + b^2) / a^2, which
+        # vanishes at the cut-off (so formed as a product)
+        alpha_sin=_complex(-(1.0 + eps * eb_b2) * sinc / r),
+        gamma_sinh=_complex((1.0 - rho_eps) * rho_b2 * sinhc / (a2 * r)),
     )
 
 
@@ -239,16 +255,16 @@ def bay_waves(
     # cosh b - mu and cos a - mu, from the same side (+1 or -1) as mu's offset
     b_mu = np.where(near_one, 0.5 * span.y_m[:, None], 0.5 * span.y_p[:, None]) - offset
     a_mu = np.where(near_one, 0.5 * span.x_m[:, None], 0.5 * span.x_p[:, None]) - offset
-    b2, eb, beta4 = (t[:, None] for t in (span.b2, span.eb, span.beta4))
-    e_a = -(span.rho[:, None] + b2)  # -a^2 + eps beta4, the E_a component
+    beta4 = span.beta4[:, None]
+    e_a, e_b = -span.rho_b2[:, None], span.eb_b2[:, None]  # s^2 + eps beta4, s = ia and b
     k_b = e_a * ux
-    k_a = -(b2 + eb) * uy
+    k_a = -e_b * uy
     b_sinh, a_sin = span.b_sinh[:, None], span.a_sin[:, None]
     vec = np.stack(
         [
             k_a * a_sin - k_b * b_sinh,
-            k_b * b_mu * (b2 + eb) + k_a * a_mu * e_a,
-            k_a * a_sin * e_a - k_b * b_sinh * (b2 + eb),
+            k_b * b_mu * e_b + k_a * a_mu * e_a,
+            k_a * a_sin * e_a - k_b * b_sinh * e_b,
             (k_b * b_mu + k_a * a_mu) * beta4,
         ],
         axis=1,
