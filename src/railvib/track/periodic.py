@@ -411,14 +411,13 @@ class PeriodicTrack(TrackModel):
         TrackWaves
         """
         f = _as_freq(f)
-        half = self.span_transfer(f, 0.5)
         pad = self._pad_hat(f)
         if self.rail.is_timoshenko:
-            mu_small, vec = _timoshenko_waves(half, self._timoshenko_terms(f), pad)
+            mu_small, vec = self._timoshenko_waves(f, pad)
             mu_big = 1.0 / mu_small
         else:
             mu_small, mu_big = _propagation_constants(*_euler_characteristic(self._beta4(f), pad))
-            vec = _bloch_vector(half, pad, mu_small)
+            vec = _bloch_vector(self.span_transfer(f, 0.5), pad, mu_small)
         partner = _mirror(vec, pad)  # the eigenvector of mu_big
         # the wave that decays to the right in the limit of vanishing loss: the one with
         # |mu| < 1, or, where |mu| cannot tell, the one carrying power to the right
@@ -444,6 +443,34 @@ class PeriodicTrack(TrackModel):
             pad=pad,
             _matching_inv=matching_inv,
         )
+
+    def _timoshenko_waves(
+        self, f: NDArray[np.float64], pad: NDArray[np.complex128]
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Propagation constants ``|mu| <= 1`` and Bloch vectors of the Timoshenko bay.
+
+        In closed form (:func:`railvib.track.timoshenko.bay_waves`), except where
+        ``|a^2 + b^2| <`` :data:`SMALL_WAVENUMBERS`: there the divided differences of the
+        closed form would cancel, and the entries of the bay (no larger than ``cosh 2``)
+        and its half-span pencil are used, as for the Euler bay; the half-span matrices
+        (a matrix exponential) are formed only there.
+        """
+        span = span_terms(*self._timoshenko_terms(f))
+        mu = np.empty((f.size, 2), dtype=np.complex128)
+        vec = np.zeros((f.size, 4, 2), dtype=np.complex128)
+        large = np.abs(span.r) >= SMALL_WAVENUMBERS
+        if np.any(large):
+            mu[large], vec[large] = bay_waves(Span(*(t[large] for t in span)), pad[large])
+        # the entries (low frequency), and the pencil where the closed form's vector vanishes
+        pencil = ~large | np.any(np.linalg.norm(vec, axis=1) == 0, axis=1)
+        if np.any(pencil):
+            half = self.span_transfer(f[pencil], 0.5)
+            small = ~large[pencil]
+            if np.any(small):
+                cell = _cell(half[small], pad[pencil][small])
+                mu[~large] = _propagation_constants(*_characteristic(cell))[0]
+            vec[pencil] = _bloch_vector(half, pad[pencil], mu[pencil])
+        return mu, vec
 
     # -- public physics -------------------------------------------------------------------
     def receptance(
@@ -740,35 +767,6 @@ def _euler_characteristic(
         cos, cosh, sin, sinh = np.cos(z), np.cosh(z), np.sin(z), np.sinh(z)
         c2m2[large] = 4.0 * cos * cosh + pad[large] * (cosh * sin - cos * sinh) / z**3
     return c1, c2m2
-
-
-def _timoshenko_waves(
-    half: NDArray[np.complex128],
-    terms: tuple[NDArray[np.complex128], complex, NDArray[np.complex128], NDArray[np.complex128]],
-    pad: NDArray[np.complex128],
-) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """Propagation constants ``|mu| <= 1`` and Bloch vectors of the Timoshenko bay.
-
-    In closed form (:func:`railvib.track.timoshenko.bay_waves`), except where
-    ``|a^2 + b^2| <`` :data:`SMALL_WAVENUMBERS`: there the divided differences of the
-    closed form would cancel, and the entries of the bay (no larger than ``cosh 2``) and
-    its half-span pencil are used, as for any bay. `terms` are
-    :meth:`PeriodicTrack._timoshenko_terms`; `half` the half-span transfer matrices.
-    """
-    span = span_terms(*terms)
-    mu = np.empty((pad.size, 2), dtype=np.complex128)
-    vec = np.empty((pad.size, 4, 2), dtype=np.complex128)
-    large = np.abs(span.r) >= SMALL_WAVENUMBERS
-    if np.any(large):
-        mu[large], vec[large] = bay_waves(Span(*(t[large] for t in span)), pad[large])
-    # the entries (low frequency), and the pencil where the closed form's vector vanishes
-    pencil = ~large | np.any(np.linalg.norm(vec, axis=1) == 0, axis=1)
-    small = ~large
-    if np.any(small):
-        mu[small] = _propagation_constants(*_characteristic(_cell(half[small], pad[small])))[0]
-    if np.any(pencil):
-        vec[pencil] = _bloch_vector(half[pencil], pad[pencil], mu[pencil])
-    return mu, vec
 
 
 def _bloch_vector(
