@@ -92,13 +92,14 @@ def span_terms(
     Parameters
     ----------
     beta4 : numpy.ndarray
-        ``m omega^2 d^4 / EI*``, ``(n_freq,)``.
+        ``m omega^2 d^4 / EI*`` (dimensionless), ``(n_freq,)``.
     eps : complex
-        ``EI* / (kappa G A* d^2)``.
+        ``EI* / (kappa G A* d^2)`` (dimensionless).
     rho : numpy.ndarray
-        ``rho_I omega^2 d^2 / EI*``, ``(n_freq,)``.
+        ``rho_I omega^2 d^2 / EI*`` (dimensionless), ``(n_freq,)``.
     rho_eps : numpy.ndarray
-        ``rho eps = rho_I omega^2 / kappa G A*`` (1 at the cut-off), ``(n_freq,)``.
+        ``rho eps = rho_I omega^2 / kappa G A*`` (dimensionless, 1 at the cut-off),
+        ``(n_freq,)``.
 
     Returns
     -------
@@ -167,7 +168,7 @@ def bay_characteristic(
     Parameters
     ----------
     span : Span
-        The span's wave terms.
+        The span's wave terms (dimensionless).
     pad : numpy.ndarray
         Dimensionless pad stiffness ``K* d^3 / EI*``, ``(n_freq,)``.
 
@@ -226,7 +227,7 @@ def bay_waves(
     Parameters
     ----------
     span : Span
-        The span's wave terms.
+        The span's wave terms (dimensionless).
     pad : numpy.ndarray
         Dimensionless pad stiffness ``K* d^3 / EI*``, ``(n_freq,)``.
 
