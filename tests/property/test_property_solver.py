@@ -115,23 +115,13 @@ def check_solver(overrides, n_freq):
     driving = np.diagonal(rec, axis1=1, axis2=2)
     assert np.all(driving.imag < 0)
 
-    # reciprocity, relative to the geometric mean of the two driving points: 1e-9 for an
-    # Euler rail. A Timoshenko rail has an open defect (docs/design/0002-track-solver.md,
-    # "An open defect"): its trace-based characteristic polynomial gives sqrt(round-off)
-    # at the double Bloch roots of band edges above ~2 kHz (measured up to 6.3e-8 on
-    # undamped soft rails): 1e-6 for it; and where its cut-off frequency meets a
-    # pinned-pinned frequency (a nearly quadruple root, up to 1e-1) the solver warns and
-    # only finiteness and passivity are claimed (the band computed here in closed form)
+    # reciprocity, relative to the geometric mean of the two driving points: 1e-9, the
+    # issue's target (measured at most 1.4e-10 for Timoshenko rails, at the cut-off
+    # meeting a pinned-pinned frequency, docs/design/0002-track-solver.md; about 1e-11 for
+    # Euler rails)
     scale = np.sqrt(np.abs(driving[:, :, None] * driving[:, None, :]))
     error = (np.abs(rec - np.swapaxes(rec, 1, 2)) / scale).max(axis=(1, 2))
-    bound = np.full(f.size, 1e-9 if track.rail.shear_stiffness is None else 1e-6)
-    rail = track.rail
-    if rail.shear_stiffness is not None and rail.rotary_inertia > 0:
-        f_c = np.sqrt(rail.shear_stiffness / rail.rotary_inertia) / (2 * np.pi)
-        if any(abs(p / f_c - 1.0) < 1e-2 for p in pinned_pinned_hz(rail, d, 2 * f_c)):
-            bound[np.abs(f / f_c - 1.0) < 1e-2] = np.inf
-    # ... and the solver flags exactly that band (the SolverWarning of waves())
-    np.testing.assert_array_equal(track.cut_off_coincidence(f), np.isinf(bound))
+    bound = 1e-9
     assert np.all(error <= bound)
 
     # the coupled system seen at the wheels, G = (S + Q)^-1 = (C S + I)^-1 C with
@@ -166,10 +156,8 @@ def check_solver(overrides, n_freq):
     assert np.all(np.abs(np.abs(h) - 1.0) <= bound[:, None] + 1e-12)
 
 
-# derandomize: the same examples on every run, so CI is reproducible. Random exploration
-# (`pytest --hypothesis-seed=<n>`) still finds the Timoshenko corners of the open defect
-# (docs/design/0002-track-solver.md): undamped soft rails on lossless pads above ~3 kHz,
-# where reciprocity and the sign of Im(alpha) are lost to round-off
+# derandomize: the same examples on every run, so CI is reproducible (random exploration:
+# `pytest --hypothesis-seed=<n>`)
 @pytest.mark.property
 @settings(
     max_examples=4, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]

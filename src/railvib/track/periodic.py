@@ -37,6 +37,7 @@ from railvib.track.beam import (
     timoshenko_transfer,
 )
 from railvib.track.stacked import receptance_entries, stacked_waves
+from railvib.track.timoshenko import Span, bay_waves, span_terms
 
 __all__ = ["MAX_BAY_WAVENUMBER", "PeriodicTrack", "Rail", "TrackWaves"]
 
@@ -67,10 +68,10 @@ WEAK_CROSS_PRODUCT = 1e-3
 #: ``eta_r -> 0+`` (``exp(+i omega t)``), evaluated at this value (docs/design/0002-track-solver.md)
 VANISHING_LOSS_FACTOR = 1e-12
 
-#: relative distance within which a Timoshenko rail's cut-off frequency and one of its
-#: pinned-pinned frequencies coincide, and around the cut-off within which the solver's
-#: precision degrades then (docs/design/0002-track-solver.md, "An open defect")
-COINCIDENCE_WINDOW = 1e-2
+#: below this ``|a^2 + b^2|`` (the Timoshenko span's two wavenumbers, squared and times
+#: d^2) the bay's waves come from its entries and its half-span pencil, which are then
+#: no larger than ``cosh 2``, instead of the closed form (:mod:`railvib.track.timoshenko`)
+SMALL_WAVENUMBERS = 4.0
 
 #: mirror image ``x -> -x`` of a state ``(w, d psi, d^2 psi', d^3 v)``
 _MIRROR = np.array([1.0, -1.0, 1.0, -1.0])
@@ -297,35 +298,6 @@ class PeriodicTrack(TrackModel):
             out.append(f_n)
             n += 1
 
-    def cut_off_coincidence(self, f: ArrayLike) -> NDArray[np.bool_]:
-        """Frequencies where a Timoshenko rail's cut-off meets a pinned-pinned frequency.
-
-        When the cut-off frequency (:attr:`Rail.cut_off_frequency_hz`) lies within
-        :data:`COINCIDENCE_WINDOW` of a pinned-pinned frequency, both wave pairs of the bay
-        have their propagation constants near ``+-1`` at once (a nearly quadruple root)
-        and the wave solution loses precision within that window of the cut-off (measured
-        in docs/design/0002-track-solver.md: reciprocity 4e-9 at 1 % apart, 1.5e-5 at
-        0.1 %, 0.12 where they coincide). :meth:`waves` warns there.
-
-        Parameters
-        ----------
-        f : array_like
-            Frequencies in Hz.
-
-        Returns
-        -------
-        numpy.ndarray of bool
-            True at the frequencies within the window of such a cut-off.
-        """
-        f = np.atleast_1d(np.asarray(f, dtype=float))
-        f_c = self.rail.cut_off_frequency_hz
-        if f_c is None:
-            return np.zeros(f.shape, dtype=bool)
-        f_pp = self.pinned_pinned_frequencies_hz(f_c * (1.0 + COINCIDENCE_WINDOW))
-        if not np.any(np.abs(f_pp / f_c - 1.0) < COINCIDENCE_WINDOW):
-            return np.zeros(f.shape, dtype=bool)
-        return np.abs(f / f_c - 1.0) < COINCIDENCE_WINDOW
-
     # -- dimensionless kernels ------------------------------------------------------------
     @property
     def _loss(self) -> complex:
@@ -389,11 +361,23 @@ class PeriodicTrack(TrackModel):
         f = _as_freq(f)
         if self.rail.shear_stiffness is None:
             return field_transfer(self._beta4(f), length)
-        d = self.sleeper_spacing
-        ei = self._ei
-        kga = self.rail.shear_stiffness * self._loss
-        rotary = self.rail.rotary_inertia * (2.0 * np.pi * f) ** 2 * d**2 / ei
-        return timoshenko_transfer(self._beta4(f), ei / (kga * d**2), rotary, length)
+        return timoshenko_transfer(*self._timoshenko_terms(f)[:3], length)
+
+    def _timoshenko_terms(
+        self, f: NDArray[np.float64]
+    ) -> tuple[NDArray[np.complex128], complex, NDArray[np.complex128], NDArray[np.complex128]]:
+        """``beta4``, ``eps = EI* / (kGA* d^2)``, ``rho = rho_I omega^2 d^2 / EI*`` and ``rho eps``.
+
+        ``rho eps = rho_I omega^2 / kGA*`` is formed directly (1 at the cut-off frequency).
+        """
+        shear = self.rail.shear_stiffness
+        assert shear is not None  # only called for a Timoshenko rail
+        d, ei = self.sleeper_spacing, self._ei
+        kga = shear * self._loss
+        omega2 = (2.0 * np.pi * f) ** 2
+        rotary = np.asarray(self.rail.rotary_inertia * omega2 * d**2 / ei, dtype=np.complex128)
+        rho_eps = np.asarray(self.rail.rotary_inertia * omega2 / kga, dtype=np.complex128)
+        return self._beta4(f), ei / (kga * d**2), rotary, rho_eps
 
     @fill_doc(_SHARED)
     def cell_transfer(self, f: ArrayLike) -> NDArray[np.complex128]:
@@ -427,15 +411,13 @@ class PeriodicTrack(TrackModel):
         TrackWaves
         """
         f = _as_freq(f)
-        half = self.span_transfer(f, 0.5)
         pad = self._pad_hat(f)
         if self.rail.is_timoshenko:
-            _warn_if_cut_off_coincides(self, f)
-            coefficients = _characteristic(_cell(half, pad))
+            mu_small, vec = self._timoshenko_waves(f, pad)
+            mu_big = 1.0 / mu_small
         else:
-            coefficients = _euler_characteristic(self._beta4(f), pad)
-        mu_small, mu_big = _propagation_constants(*coefficients)
-        vec = _bloch_vector(half, pad, mu_small)
+            mu_small, mu_big = _propagation_constants(*_euler_characteristic(self._beta4(f), pad))
+            vec = _bloch_vector(self.span_transfer(f, 0.5), pad, mu_small)
         partner = _mirror(vec, pad)  # the eigenvector of mu_big
         # the wave that decays to the right in the limit of vanishing loss: the one with
         # |mu| < 1, or, where |mu| cannot tell, the one carrying power to the right
@@ -461,6 +443,34 @@ class PeriodicTrack(TrackModel):
             pad=pad,
             _matching_inv=matching_inv,
         )
+
+    def _timoshenko_waves(
+        self, f: NDArray[np.float64], pad: NDArray[np.complex128]
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Propagation constants ``|mu| <= 1`` and Bloch vectors of the Timoshenko bay.
+
+        In closed form (:func:`railvib.track.timoshenko.bay_waves`), except where
+        ``|a^2 + b^2| <`` :data:`SMALL_WAVENUMBERS`: there the divided differences of the
+        closed form would cancel, and the entries of the bay (no larger than ``cosh 2``)
+        and its half-span pencil are used, as for the Euler bay; the half-span matrices
+        (a matrix exponential) are formed only there.
+        """
+        span = span_terms(*self._timoshenko_terms(f))
+        mu = np.empty((f.size, 2), dtype=np.complex128)
+        vec = np.zeros((f.size, 4, 2), dtype=np.complex128)
+        large = np.abs(span.r) >= SMALL_WAVENUMBERS
+        if np.any(large):
+            mu[large], vec[large] = bay_waves(Span(*(t[large] for t in span)), pad[large])
+        # the entries (low frequency), and the pencil where the closed form's vector vanishes
+        pencil = ~large | np.any(np.linalg.norm(vec, axis=1) == 0, axis=1)
+        if np.any(pencil):
+            half = self.span_transfer(f[pencil], 0.5)
+            small = ~large[pencil]
+            if np.any(small):
+                cell = _cell(half[small], pad[pencil][small])
+                mu[~large] = _propagation_constants(*_characteristic(cell))[0]
+            vec[pencil] = _bloch_vector(half, pad[pencil], mu[pencil])
+        return mu, vec
 
     # -- public physics -------------------------------------------------------------------
     def receptance(
@@ -745,22 +755,6 @@ def _warn_if_ill_conditioned(f: NDArray[np.float64], estimate: NDArray[np.float6
             f"~{estimate.max():.1e}); the mid-span response there is physically unbounded "
             f"and is given for a rail loss factor of {VANISHING_LOSS_FACTOR:g}. "
             "Set track.rail.loss_factor (e.g. 0.01) or move the grid point.",
-            SolverWarning,
-            stacklevel=3,
-        )
-
-
-def _warn_if_cut_off_coincides(track: PeriodicTrack, f: NDArray[np.float64]) -> None:
-    """Warn at the frequencies of :meth:`PeriodicTrack.cut_off_coincidence`."""
-    bad = track.cut_off_coincidence(f)
-    if np.any(bad):
-        warnings.warn(
-            f"{int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) lie within "
-            f"{COINCIDENCE_WINDOW:.0%} of the Timoshenko rail's cut-off frequency "
-            f"{track.rail.cut_off_frequency_hz:.6g} Hz, which meets one of its pinned-pinned "
-            "frequencies: the wave solution loses precision there (up to 1e-1 where they "
-            "coincide, docs/design/0002-track-solver.md); change track.rail.shear_stiffness "
-            "or rotary_inertia slightly, or move the grid points.",
             SolverWarning,
             stacklevel=3,
         )
