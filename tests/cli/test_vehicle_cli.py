@@ -97,6 +97,6 @@ def test_run_the_train_preset(tmp_path, monkeypatch):
     assert ds.sizes["wheel"] == 24
     ds.close()
     summary = (tmp_path / "out" / "summary.md").read_text()
-    section = summary.split("## Per car and for the train", 1)[1]
+    section = summary.split("## Per car and for the train", 1)[1].split("\n## ", 1)[0]
     rows = [line.split("|")[1].strip() for line in section.splitlines() if line.startswith("| ")]
     assert rows[1:] == [f"car{i}" for i in range(1, 7)] + ["train"]
