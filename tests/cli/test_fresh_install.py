@@ -39,11 +39,18 @@ def readme_sweep_file() -> str:
     return _block(text, "```toml\n# my_sweep.toml", "toml")
 
 
+def readme_braking_file() -> str:
+    """The README's non-stationary case (the toml block that starts ``# braking.toml``)."""
+    text = README.read_text(encoding="utf-8")
+    return _block(text, "```toml\n# braking.toml", "toml")
+
+
 def test_the_readme_lists_the_commands_this_test_runs():
     commands = readme_commands()
     for word in ("template", "run", "presets", "validate", "sweep", "pad example", "pad fit"):
         assert any(c.startswith(f"railvib {word}") for c in commands), word
     assert "base = " in readme_sweep_file()
+    assert 'mode = "nonstationary"' in readme_braking_file()
 
 
 def _run(args: str, cwd: Path, env: dict[str, str], timeout: float = 300):
@@ -73,6 +80,7 @@ def test_every_readme_command_works_after_pip_install_without_extras(tmp_path):
     work = tmp_path / "work"
     work.mkdir()
     (work / "my_sweep.toml").write_text(readme_sweep_file(), encoding="utf-8")
+    (work / "braking.toml").write_text(readme_braking_file(), encoding="utf-8")
     for command in readme_commands():
         if command.startswith("railvib validate") and "--realisations" not in command:
             command += " --realisations 1"  # the same command, one Monte Carlo record
@@ -82,6 +90,8 @@ def test_every_readme_command_works_after_pip_install_without_extras(tmp_path):
     assert (work / "out" / "results.nc").is_file()
     assert (work / "my_sweep.sweep" / "sweep.zarr").is_dir()
     assert (work / "pad-fit" / "pad.toml").is_file()
+    assert (work / "track-out" / "track.nc").is_file()
+    assert (work / "braking-out" / "results.nc").is_file()
     # a Dask cluster without the extra: one line saying what to install, before any work
     done = _run("railvib sweep my_sweep.toml -o dask-out --scheduler tcp://127.0.0.1:1", work, env)
     assert done.returncode == 2
