@@ -13,6 +13,7 @@ from __future__ import annotations
 import copy
 import json
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -33,7 +34,8 @@ from railvib.results.stats import summary_names
 from railvib.results.variables import compute_variables
 from railvib.sweep.layout import SweepLayout, is_cheap_field, is_pad_field
 from railvib.sweep.spec import SweepSpec
-from railvib.sweep.stacked import frf_pad_stack
+from railvib.sweep.stacked import frf_case_stack
+from railvib.track.periodic import PeriodicTrack
 from railvib.units import kmh_to_ms
 from railvib.vehicle.assembly import WheelCondensation
 
@@ -285,57 +287,46 @@ def _solve_groups(
 
     A group's cases share everything but the pad, its temperature, the speed and the
     irregularity: its first case is validated and built, the others' pads are built from
-    their (validated) pad tables, and the group is solved as one stack
-    (:func:`railvib.sweep.stacked.frf_pad_stack`). Groups share the vehicle condensation
-    where their vehicles agree.
+    their (validated) pad tables. Every case of the chunk, whatever its group, is then
+    one stack (:func:`railvib.sweep.stacked.frf_case_stack`): cases with the same track
+    table and wheel positions share one track solution, cases with the same vehicle
+    table one condensation.
     """
     n_case = len(cases)
     s_r = np.empty((n_case, f.size))
-    loads: NDArray[np.float64] | None = None
-    out: dict[str, NDArray[np.complex128]] = {}
-    dofs: tuple[str, ...] = ()
-    condensations: dict[str, WheelCondensation] = {}
+    systems: list[CoupledSystem | None] = [None] * n_case
+    loads: list[NDArray[np.float64] | None] = [None] * n_case
     pads: dict[str, PadModel] = {}
     spectra: dict[str, Any] = {}
     for members in groups:
         case = case_from_dict(cases[members[0]], warn=False)
         system = build_system(case)
-        vkey = _key(cases[members[0]]["vehicle"])
-        if vkey not in condensations:
-            condensations[vkey] = system.vehicle.condensed_to_wheels(f)
-        member_pads = []
-        for i in members:
-            table = cases[i]["track"]["pad"]
-            pkey = _key(table)
-            if pkey not in pads:
-                pads[pkey] = _pad_like(system.track.pad, table)
-            member_pads.append(pads[pkey])
-        batch = frf_pad_stack(
-            system,
-            f,
-            member_pads,
-            [cases[i]["track"].get("pad_temperature_c") for i in members],
-            [kmh_to_ms(cases[i]["speed_kmh"]) for i in members],
-            condensation=condensations[vkey],
-        )
         static = np.asarray(system.vehicle.static_wheel_loads(), dtype=float)
-        if loads is None:
-            loads = np.empty((n_case, static.size))
-            dofs = batch.dofs
-        for name in ("vehicle", "rail", "contact_force"):
-            value = getattr(batch, name)
-            if name not in out:
-                out[name] = np.empty((n_case, *value.shape[1:]), dtype=np.complex128)
-            out[name][members] = value
-        loads[members] = static
+        tracks: dict[str, PeriodicTrack] = {}
         for i in members:
+            track = cases[i]["track"]
+            tkey = _key(track)
+            if tkey not in tracks:
+                pkey = _key(track["pad"])
+                if pkey not in pads:
+                    pads[pkey] = _pad_like(system.track.pad, track["pad"])
+                tracks[tkey] = replace(
+                    system.track, pad=pads[pkey], pad_temperature=track.get("pad_temperature_c")
+                )
+            speed = kmh_to_ms(cases[i]["speed_kmh"])
+            systems[i] = replace(system, track=tracks[tkey], speed=speed)
+            loads[i] = static
             ikey = _key(cases[i]["irregularity"])
             if ikey not in spectra:
                 spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
-            s_r[i] = spectra[ikey].temporal(f, kmh_to_ms(cases[i]["speed_kmh"]))
-    assert loads is not None, "every case belongs to one group"
-    frf = FRF(f, out["vehicle"], out["rail"], out["contact_force"], dofs)
-    return frf, s_r, loads
+            s_r[i] = spectra[ikey].temporal(f, speed)
+    frf = frf_case_stack(
+        f,
+        [s for s in systems if s is not None],
+        [_track_key(c) for c in cases],
+        [_key(c["vehicle"]) for c in cases],
+    )
+    return frf, s_r, np.stack([w for w in loads if w is not None])
 
 
 def _pad_like(template: PadModel, table: dict[str, Any]) -> PadModel:
