@@ -24,13 +24,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
+from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem, track_receptances
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
-from railvib.stack import dot, put, solve, stacked, to_numpy
-from railvib.track.periodic import VANISHING_LOSS_FACTOR, PeriodicTrack
-from railvib.track.periodic import _warn_if_ill_conditioned as warn_if_ill_conditioned
+from railvib.stack import dot, put, solve, to_numpy
 from railvib.track.stacked import receptance_entries, stacked_waves
 from railvib.vehicle.assembly import WheelCondensation
 
@@ -90,7 +88,11 @@ def frf_case_stack(
     dofs = systems[0].vehicle.dofs
     if any(systems[i].vehicle.dofs != dofs for i in vehicle_first):
         raise CaseError("vehicle", "several DOF sets", "the same vehicle DOFs in every case")
-    per_track = _receptances(f, [systems[i] for i in track_first])
+    per_track = track_receptances(
+        f,
+        [systems[i].track for i in track_first],
+        [systems[i].wheel_positions for i in track_first],
+    )
     known = {} if condensations is None else condensations
     conds = [
         known[vehicle_keys[i]]
@@ -174,57 +176,6 @@ def _distinct_keys(keys: Sequence[Hashable]) -> tuple[NDArray[np.int64], list[in
             first.append(i)
         which[i] = number[k]
     return which, first
-
-
-def _stackable(track: PeriodicTrack) -> bool:
-    """Whether the stacked kernel gives `track`'s receptance: an Euler rail, the wave solver."""
-    return type(track).receptance is PeriodicTrack.receptance and not track.rail.is_timoshenko
-
-
-def _complex_ei(track: PeriodicTrack) -> complex:
-    """The rail's ``EI (1 + i eta)`` as the wave solver takes it (vanishing loss floored), N m^2."""
-    return track.rail.bending_stiffness * (
-        1.0 + 1j * max(track.rail.loss_factor, VANISHING_LOSS_FACTOR)
-    )
-
-
-def _receptances(f: NDArray[np.float64], systems: Sequence[CoupledSystem]) -> NDArray[Any]:
-    """Rail receptance between each system's contact points, ``(n_sys, n_freq, n_w, n_w)``, m/N.
-
-    The systems with the same dimensionless wheel positions ``x / d`` and a stackable
-    track are one stack of (system, frequency) points, each with its own ``beta4``, pad
-    and ``d^3 / EI*``, solved in blocks of :data:`~railvib.coupling.FREQUENCY_BLOCK`.
-    """
-    n_w = systems[0].wheel_positions.size
-    out = np.empty((len(systems), f.size, n_w, n_w), dtype=np.complex128)
-    stacks: dict[tuple[float, ...], list[int]] = {}
-    for i, s in enumerate(systems):
-        x = s.wheel_positions
-        if _stackable(s.track):
-            stacks.setdefault(tuple(x / s.track.sleeper_spacing), []).append(i)
-        else:
-            out[i] = s.track.receptance(f, x, x)
-    omega = 2.0 * np.pi * f
-    for x_d, members in stacks.items():
-        beta4, pad, scale = [], [], []
-        for i in members:
-            track = systems[i].track
-            track.check_frequencies(f)
-            d, ei = track.sleeper_spacing, _complex_ei(track)
-            # the wave solver's expressions, operation for operation
-            beta4.append(track.rail.mass_per_length * omega**2 * d**4 / ei)
-            pad.append(track.support_stiffness(f) * d**3 / ei)
-            scale.append(np.full(f.size, d**3 / ei))
-        b4, k, sc = (np.concatenate(v).astype(np.complex128) for v in (beta4, pad, scale))
-        points = np.tile(f, len(members))
-        rec = np.empty((points.size, n_w, n_w), dtype=np.complex128)
-        for start in range(0, points.size, FREQUENCY_BLOCK):
-            sl = slice(start, start + FREQUENCY_BLOCK)
-            waves = stacked_waves(b4[sl], k[sl])
-            warn_if_ill_conditioned(points[sl], waves.condition)
-            rec[sl] = stacked(receptance_entries(waves, x_d, x_d)) * sc[sl, None, None]
-        out[members] = rec.reshape(len(members), f.size, n_w, n_w)
-    return out
 
 
 def _stacked_condensations(conds: Sequence[WheelCondensation]) -> WheelCondensation:
