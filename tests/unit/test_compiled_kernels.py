@@ -100,7 +100,7 @@ def test_compiled_kernel_equals_the_numpy_kernel_on_a_large_stack(system):
 @pytest.mark.slow  # as above
 def test_track_receptances_agree_compiled_or_not(system, monkeypatch):
     pytest.importorskip("numba")
-    f = np.geomspace(0.5, 3000.0, compiled.COMPILED_MIN_POINTS)
+    f = np.geomspace(0.5, 3000.0, 20000)
     lossless = replace(system.track, pad=railvib.pads.SpringDamper(5.0e7, 0.0))
     tracks = [system.track, lossless]
     x = [system.wheel_positions] * 2
@@ -115,8 +115,11 @@ def test_track_receptances_agree_compiled_or_not(system, monkeypatch):
     assert not compiled.use_compiled(10 * compiled.COMPILED_MIN_POINTS)
 
 
-def test_small_stacks_stay_on_numpy():
-    assert not compiled.use_compiled(compiled.COMPILED_MIN_POINTS - 1)
+def test_small_stacks_and_small_work_stay_on_numpy():
+    assert not compiled.use_compiled(compiled.LOADED_MIN_POINTS - 1)
+    if not compiled._KERNEL:  # nothing loaded yet in this process: the work decides
+        assert not compiled.use_compiled(10_000, work=compiled.COMPILED_MIN_POINTS - 1)
+        assert not compiled._KERNEL
 
 
 def test_a_run_below_the_threshold_is_the_numpy_kernel_exactly(system):

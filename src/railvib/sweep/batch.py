@@ -35,6 +35,7 @@ from railvib.results.variables import compute_variables
 from railvib.sweep.layout import SweepLayout, is_cheap_field, is_pad_field
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.stacked import frf_case_stack
+from railvib.track.compiled import use_compiled
 from railvib.track.periodic import PeriodicTrack
 from railvib.units import kmh_to_ms
 from railvib.vehicle.assembly import WheelCondensation
@@ -169,7 +170,9 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     base = spec.base_case_dict()
     f = build_grid(case_from_dict(base, warn=False)).f
     cases, groups = _chunk_cases(spec, layout, chunk_id)
-    frf, s_r, loads = _solve_groups(f, cases, groups)
+    # the compiled wave kernel where the whole sweep pays for loading it
+    compiled = use_compiled(len(cases) * f.size, work=layout.n_cases * f.size)
+    frf, s_r, loads = _solve_groups(f, cases, groups, compiled)
     needed = dict.fromkeys([*spec.variables, "psd_force", spec.summary_variable])
     values = compute_variables(frf, s_r, needed)  # each variable computed once
     out: dict[str, NDArray[Any]] = {name: values[name] for name in spec.variables}
@@ -278,7 +281,7 @@ def _with_field(d: Mapping[str, Any], parts: list[str], value: Any) -> dict[str,
 
 
 def _solve_groups(
-    f: NDArray[np.float64], cases: list[dict[str, Any]], groups: list[list[int]]
+    f: NDArray[np.float64], cases: list[dict[str, Any]], groups: list[list[int]], compiled: bool
 ) -> tuple[FRF, NDArray[np.float64], NDArray[np.float64]]:
     """Responses of every case, ``(n_case, n_freq, ...)``, its irregularity PSD and wheel loads.
 
@@ -325,6 +328,7 @@ def _solve_groups(
         [s for s in systems if s is not None],
         [_track_key(c) for c in cases],
         [_key(c["vehicle"]) for c in cases],
+        compiled=compiled,
     )
     return frf, s_r, np.stack([w for w in loads if w is not None])
 

@@ -41,6 +41,7 @@ def frf_case_stack(
     track_keys: Sequence[Hashable] | None = None,
     vehicle_keys: Sequence[Hashable] | None = None,
     condensations: Mapping[Hashable, WheelCondensation] | None = None,
+    compiled: bool | None = None,
 ) -> FRF:
     """Coupled FRFs of cases that may differ in every structural parameter, in one stack.
 
@@ -71,6 +72,9 @@ def frf_case_stack(
         identity.
     condensations : mapping, optional
         Vehicle condensations at `f` already known, by vehicle key.
+    compiled : bool, optional
+        Whether the track solutions use the compiled kernel
+        (:func:`railvib.coupling.track_receptances`; default: where it pays for this stack).
 
     Returns
     -------
@@ -92,6 +96,7 @@ def frf_case_stack(
         f,
         [systems[i].track for i in track_first],
         [systems[i].wheel_positions for i in track_first],
+        compiled,
     )
     known = {} if condensations is None else condensations
     conds = [

@@ -9,9 +9,12 @@ band edge of a lossless rail, a wave matching with a weak pivot) are flagged and
 again by the NumPy kernel, so results agree with it to rounding everywhere.
 
 numba is optional (``pip install railvib[fast]``): it is imported, and the kernel
-compiled or loaded from numba's on-disk cache, on the first stack of at least
-:data:`COMPILED_MIN_POINTS` points; smaller stacks, and every stack where numba is not
-installed or ``RAILVIB_COMPILED=0`` is set, run on NumPy.
+compiled or loaded from numba's on-disk cache, when a process is about to solve at least
+:data:`COMPILED_MIN_POINTS` points (a sweep, a very long grid), where it pays for its
+loading; once loaded it serves every stack of :data:`LOADED_MIN_POINTS` points or more.
+A single case's run loads it only when it is cached: it never compiles it
+(:func:`compile_kernel` does, once per installation). Elsewhere, and with
+``RAILVIB_COMPILED=0``, everything runs on NumPy.
 """
 
 from __future__ import annotations
@@ -30,11 +33,20 @@ from railvib.track.stacked import (
     _nearest_sleeper,
 )
 
-__all__ = ["COMPILED_MIN_POINTS", "compiled_receptance", "use_compiled"]
+__all__ = [
+    "COMPILED_MIN_POINTS",
+    "LOADED_MIN_POINTS",
+    "compile_kernel",
+    "compiled_receptance",
+    "use_compiled",
+]
 
-#: stacks smaller than this run on NumPy: the compiled kernel's first use (importing numba,
-#: loading the cached machine code: ~0.5 s) must not slow a small ``railvib run``
-COMPILED_MIN_POINTS = 16384
+#: work (points a process solves) from which loading the compiled kernel pays: importing
+#: numba and loading its cached machine code costs ~0.4 s, the kernel saves ~1 us a point
+COMPILED_MIN_POINTS = 2**19
+
+#: once the kernel is loaded, stacks of at least this many points use it
+LOADED_MIN_POINTS = 2048
 
 #: ``1 / m!`` for the Krylov series (a point needing more terms is solved on NumPy)
 _INV_FACTORIAL = np.array([1.0 / math.factorial(m) for m in range(171)])
@@ -45,29 +57,40 @@ _PIVOT = 0.1
 _KERNEL: list[Any] = []
 
 
-def use_compiled(n_points: int, *, compile_now: bool = True) -> bool:
+def use_compiled(n_points: int, *, work: int | None = None, compile_now: bool = True) -> bool:
     """Tell whether a stack of `n_points` points runs on the compiled kernel.
 
     Parameters
     ----------
     n_points : int
         Points of the stack.
+    work : int, optional
+        Points the process is about to solve in all (a sweep's cases x frequencies);
+        default `n_points`.
     compile_now : bool
         Whether the kernel may be compiled now if numba has no machine code cached for it
-        (seconds, once per installation); False: only a cached kernel is used (a single
+        (seconds, once per installation); False: only a cached kernel is loaded (a single
         case's run is not to pay for compiling).
 
     Returns
     -------
     bool
-        True when the stack holds at least :data:`COMPILED_MIN_POINTS` points, numba is
-        installed, the environment variable ``RAILVIB_COMPILED`` is not ``0`` and the
-        kernel is cached or `compile_now`.
+        True where numba is installed, the environment variable ``RAILVIB_COMPILED`` is not
+        ``0``, and either the kernel is loaded already and the stack holds at least
+        :data:`LOADED_MIN_POINTS` points, or the work reaches :data:`COMPILED_MIN_POINTS`
+        and the kernel is cached (or `compile_now`): it is loaded then.
     """
-    if n_points < COMPILED_MIN_POINTS or os.environ.get("RAILVIB_COMPILED", "1") == "0":
+    if os.environ.get("RAILVIB_COMPILED", "1") == "0" or n_points < LOADED_MIN_POINTS:
+        return False
+    if _KERNEL:
+        return _KERNEL[0] is not None
+    if (n_points if work is None else work) < COMPILED_MIN_POINTS:
         return False
     kernel = _kernel()
-    return kernel is not None and (compile_now or bool(kernel.signatures) or _cached(kernel))
+    if kernel is None or compile_now or _cached(kernel):
+        return kernel is not None
+    _KERNEL.clear()  # not cached and not to be compiled now: not loaded
+    return False
 
 
 def compile_kernel() -> bool:
