@@ -110,14 +110,19 @@ def frf_case_stack(
     delays = np.stack([s.vehicle.wheel_offsets / s.speed for s in systems])  # (n_case, n_w)
     excitation = np.exp(-2j * np.pi * f[None, :, None] * delays[:, None, :])
     step = max(1, FREQUENCY_BLOCK // f.size)  # cases per cache-sized block
-    parts = []
+    n_w = delays.shape[1]
+    u_v = np.empty((n_case, f.size, len(dofs)), dtype=np.complex128)
+    rail = np.empty((n_case, f.size, n_w), dtype=np.complex128)
+    force = np.empty((n_case, f.size, n_w), dtype=np.complex128)
     for c in range(0, n_case, step):
         blk = slice(c, c + step)
         vehicle = cond if len(conds) == 1 else _pick(cond, vehicle_of[blk])
-        parts.append(
-            _coupled_stack(vehicle, per_track, contact[blk, None], excitation[blk], track_of[blk])
-        )
-    u_v, rail, force = (np.concatenate([p[i] for p in parts]) for i in range(3))
+        n = per_track.shape[-1]
+        rec = [[per_track[track_of[blk], :, a, b] for b in range(n)] for a in range(n)]
+        parts = _coupled_entries(vehicle, rec, contact[blk, None], excitation[blk], np, True)
+        for whole, entries in zip((u_v, rail, force), parts, strict=True):
+            for i, e in enumerate(entries):  # each entry written once, into its place
+                whole[blk, :, i] = e
     return FRF(f, u_v, rail, force, dofs)
 
 
@@ -209,32 +214,19 @@ def _pick(cond: WheelCondensation, which: NDArray[np.int64]) -> WheelCondensatio
     )
 
 
-def _coupled_stack(
-    vehicle: WheelCondensation,
-    receptance: NDArray[np.complex128],
-    contact_stiffness: Any,
-    excitation: NDArray[np.complex128],
-    which: NDArray[np.int64],
-    xp: Any = np,
-) -> tuple[Any, Any, Any]:
-    """:func:`railvib.coupling.coupled_response` on entries ``(n_case, n_freq)``.
-
-    `receptance` holds ``(n_track, n_freq, n_w, n_w)``, the track solutions; case ``c``
-    uses number ``which[c]``. The vehicle's entries ``(n_freq,)`` broadcast over the cases.
-    """
-    n = receptance.shape[-1]
-    rec = [[receptance[which, :, a, b] for b in range(n)] for a in range(n)]
-    return _coupled_entries(vehicle, rec, contact_stiffness, excitation, xp)
-
-
 def _coupled_entries(
     vehicle: WheelCondensation,
     rec: list[list[Any]],
     contact_stiffness: Any,
     excitation: Any,
     xp: Any,
+    as_entries: bool = False,
 ) -> tuple[Any, Any, Any]:
-    """The coupled solve on receptance entries ``(n_case, n_freq)`` (excitation last: wheel)."""
+    """The coupled solve on receptance entries ``(n_case, n_freq)`` (excitation last: wheel).
+
+    Returns the vehicle, rail and contact-force responses stacked on a last axis, or, with
+    `as_entries`, as their lists of entry arrays.
+    """
     s = vehicle.stiffness_entries
     n = len(rec)
     flex = [
@@ -255,6 +247,8 @@ def _coupled_entries(
     force = [-dot(s[a], u_w) for a in range(n)]
     vehicle_u = [dot(row, u_w) for row in vehicle.recovery_entries]
     rail = [dot(rec[a], force) for a in range(n)]
+    if as_entries:
+        return vehicle_u, rail, force
     out = tuple(xp.stack(v, axis=-1) for v in (vehicle_u, rail, force))
     return out[0], out[1], out[2]
 
