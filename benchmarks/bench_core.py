@@ -23,6 +23,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
+import importlib.util  # noqa: E402
 import json  # noqa: E402
 import statistics  # noqa: E402
 import subprocess  # noqa: E402
@@ -50,6 +51,9 @@ MILLION = """
 import json, resource, sys, time
 import railvib
 from railvib.case import build_spectrum
+from railvib.track import compiled
+if sys.argv[2] == "compiled":
+    compiled.compile_kernel()  # loaded before the timing: a process that holds it
 case = railvib.load_preset_case(); system = railvib.build_system(case)
 spectrum = build_spectrum(case)
 grid = railvib.FrequencyGrid.linear(0.5, 1000.0, 999.5 / (int(sys.argv[1]) - 1))
@@ -57,7 +61,6 @@ railvib.run_system(system, railvib.FrequencyGrid.linear(0.5, 1000.0, 1.0), spect
 t = time.perf_counter(); ds = railvib.run_system(system, grid, spectrum)
 t = time.perf_counter() - t
 rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
-from railvib.track import compiled
 fast = bool(compiled._KERNEL) and compiled._KERNEL[0] is not None
 print(json.dumps({"n": len(grid), "t": t, "rss": rss, "result": ds.nbytes, "compiled": fast}))
 """
@@ -123,17 +126,24 @@ def breakdown(system, f, fast, repeat, total_time):
 
 
 def goal_two(n=1_000_000):
-    out = subprocess.run(
-        [sys.executable, "-c", MILLION, str(n)], check=True, capture_output=True, text=True
-    ).stdout
-    r = json.loads(out.strip().splitlines()[-1])
-    ok = r["t"] <= 2.0 and r["rss"] <= 500e6
-    path = "compiled kernel (cached)" if r["compiled"] else "NumPy kernels"
-    print(f"2. {r['n']:,} frequencies in a fresh process (one run after a warm-up), {path}")
-    print(
-        f"   {r['t']:.2f} s, peak RSS {r['rss'] / 1e6:.0f} MB (the result dataset alone "
-        f"{r['result'] / 1e6:.0f} MB)   goal <= 2 s and <= 500 MB: {verdict(ok)}"
-    )
+    # as a user's single run gets it (NumPy: a run never loads numba itself), then in a
+    # process that has loaded the compiled kernel, where numba is installed
+    kinds = ["numpy"] + (["compiled"] if importlib.util.find_spec("numba") else [])
+    for kind in kinds:
+        out = subprocess.run(
+            [sys.executable, "-c", MILLION, str(n), kind],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
+        r = json.loads(out.strip().splitlines()[-1])
+        ok = r["t"] <= 2.0 and r["rss"] <= 500e6
+        path = "compiled kernel (loaded first)" if r["compiled"] else "NumPy kernels"
+        print(f"2. {r['n']:,} frequencies in a fresh process (one run after a warm-up), {path}")
+        print(
+            f"   {r['t']:.2f} s, peak RSS {r['rss'] / 1e6:.0f} MB (the result dataset alone "
+            f"{r['result'] / 1e6:.0f} MB)   goal <= 2 s and <= 500 MB: {verdict(ok)}"
+        )
 
 
 def honest_finite(system, repeat):

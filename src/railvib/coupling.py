@@ -135,9 +135,8 @@ class CoupledSystem:
         step = FREQUENCY_BLOCK if block is None else max(1, int(block))
         x = self.wheel_positions
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
-        # one case's run uses the compiled kernel only where it is cached (and the grid
-        # large): it does not pay for compiling it
-        compiled = use_compiled(f.size, compile_now=False)
+        # one case's run uses the compiled kernel only where this process has loaded it
+        compiled = use_compiled(f.size, load=False)
         for start in range(0, max(f.size, 1), step):
             sl = slice(start, min(start + step, f.size))
             fb = f[sl]
@@ -202,7 +201,7 @@ def track_receptances(
     compiled : bool, optional
         Whether to use the compiled kernel; default: where
         :func:`railvib.track.compiled.use_compiled` allows it for the whole stack
-        (compiling it now if it is not cached).
+        (loading it now if the stack is large enough).
 
     Returns
     -------

@@ -8,13 +8,13 @@ points where the reference takes a dense fallback (a Bloch vector from an SVD ne
 band edge of a lossless rail, a wave matching with a weak pivot) are flagged and solved
 again by the NumPy kernel, so results agree with it to rounding everywhere.
 
-numba is optional (``pip install railvib[fast]``): it is imported, and the kernel
-compiled or loaded from numba's on-disk cache, when a process is about to solve at least
-:data:`COMPILED_MIN_POINTS` points (a sweep, a very long grid), where it pays for its
-loading; once loaded it serves every stack of :data:`LOADED_MIN_POINTS` points or more.
-A single case's run loads it only when it is cached: it never compiles it
-(:func:`compile_kernel` does, once per installation). Elsewhere, and with
-``RAILVIB_COMPILED=0``, everything runs on NumPy.
+numba is optional (``pip install railvib[fast]``): a sweep whose work reaches
+:data:`COMPILED_MIN_POINTS` points imports it and loads the kernel in each worker
+(compiled the first time, then from numba's on-disk cache); :func:`compile_kernel` loads
+it into any process. Once loaded it serves every stack of :data:`LOADED_MIN_POINTS`
+points or more. A single case's run never loads it itself (at 10^6 frequencies loading
+costs about what it saves, and 160 MB of memory), so ``railvib run`` never imports numba.
+Elsewhere, and with ``RAILVIB_COMPILED=0``, everything runs on NumPy.
 """
 
 from __future__ import annotations
@@ -41,8 +41,8 @@ __all__ = [
     "use_compiled",
 ]
 
-#: work (points a process solves) from which loading the compiled kernel pays: importing
-#: numba and loading its cached machine code costs ~0.4 s, the kernel saves ~1 us a point
+#: work (points a process solves) from which a sweep loads the compiled kernel: importing
+#: numba and loading its cached machine code costs 0.4-1 s, the kernel saves ~1 us a point
 COMPILED_MIN_POINTS = 2**19
 
 #: once the kernel is loaded, stacks of at least this many points use it
@@ -57,7 +57,7 @@ _PIVOT = 0.1
 _KERNEL: list[Any] = []
 
 
-def use_compiled(n_points: int, *, work: int | None = None, compile_now: bool = True) -> bool:
+def use_compiled(n_points: int, *, work: int | None = None, load: bool = True) -> bool:
     """Tell whether a stack of `n_points` points runs on the compiled kernel.
 
     Parameters
@@ -67,34 +67,34 @@ def use_compiled(n_points: int, *, work: int | None = None, compile_now: bool = 
     work : int, optional
         Points the process is about to solve in all (a sweep's cases x frequencies);
         default `n_points`.
-    compile_now : bool
-        Whether the kernel may be compiled now if numba has no machine code cached for it
-        (seconds, once per installation); False: only a cached kernel is loaded (a single
-        case's run is not to pay for compiling).
+    load : bool
+        Whether the kernel may be loaded now (numba imported, the kernel loaded from its
+        cache or compiled, seconds the first time) if it is not loaded yet; False: only a
+        kernel already loaded in this process is used (a single case's run: at 10^6
+        frequencies loading costs about what it saves, and 160 MB).
 
     Returns
     -------
     bool
         True where numba is installed, the environment variable ``RAILVIB_COMPILED`` is not
-        ``0``, and either the kernel is loaded already and the stack holds at least
-        :data:`LOADED_MIN_POINTS` points, or the work reaches :data:`COMPILED_MIN_POINTS`
-        and the kernel is cached (or `compile_now`): it is loaded then.
+        ``0`` and the stack holds at least :data:`LOADED_MIN_POINTS` points, if the kernel
+        is loaded already, or `load` and the work reaches :data:`COMPILED_MIN_POINTS` (it
+        is loaded then).
     """
     if os.environ.get("RAILVIB_COMPILED", "1") == "0" or n_points < LOADED_MIN_POINTS:
         return False
     if _KERNEL:
         return _KERNEL[0] is not None
-    if (n_points if work is None else work) < COMPILED_MIN_POINTS:
+    if not load or (n_points if work is None else work) < COMPILED_MIN_POINTS:
         return False
-    kernel = _kernel()
-    if kernel is None or compile_now or _cached(kernel):
-        return kernel is not None
-    _KERNEL.clear()  # not cached and not to be compiled now: not loaded
-    return False
+    return _kernel() is not None
 
 
 def compile_kernel() -> bool:
-    """Compile the kernel now (or load it from numba's cache), so later runs find it cached.
+    """Load the kernel into this process (compiling it if numba has not cached it).
+
+    Afterwards every stack of :data:`LOADED_MIN_POINTS` points or more in this process,
+    a single case's run included, uses it.
 
     Returns
     -------
@@ -119,14 +119,6 @@ def _kernel() -> Any:
         else:
             _KERNEL.append(numba.njit(cache=True, nogil=True)(_points))
     return _KERNEL[0]
-
-
-def _cached(kernel: Any) -> bool:
-    """Whether numba holds machine code of `kernel` on disk (its cache index exists)."""
-    try:
-        return os.path.exists(kernel._cache._cache_file._index_path)
-    except AttributeError:  # another numba version's internals: compile only when allowed
-        return False
 
 
 def compiled_receptance(
