@@ -5,7 +5,9 @@ fractional-Zener pad with WLF shift) x speed (100 values, 40 to 160 km/h): 1000 
 1000 log-spaced frequencies, 14 responses. ``--structural`` adds the structural sweep,
 where no two cases share a track: 10 temperatures x 100 pad stiffnesses (1000 cases),
 and ``--large`` the same with 1000 pad stiffnesses (10^4 cases; issue 13 goal: <= 10 s
-wall on 2 cores, the parent's memory bounded by the chunk).
+wall on 2 cores, the parent's memory bounded by the chunk). ``--rail-vehicle`` adds a
+sweep of 10 rail bending stiffnesses x 100 car body masses (1000 cases, no two sharing a
+track or a vehicle: every case's rail and vehicle evaluated on the stack).
 
 Each sweep is timed as a user runs it (process start, chunk files and the Zarr store
 included), with the parent's peak resident memory. The one-by-one reference calls
@@ -16,6 +18,7 @@ included), with the parent's peak resident memory. The one-by-one reference call
 Usage::
 
     python benchmarks/bench_sweep.py [--workers 2] [--sample 100] [--structural] [--large]
+        [--rail-vehicle] [--only-goals]
 """
 
 from __future__ import annotations
@@ -46,7 +49,21 @@ PAD = {
 }
 
 
-def sweep_dict(structural: bool = False, n_pads: int = 100) -> dict[str, Any]:
+#: the rail x vehicle sweep (--rail-vehicle): no two cases share a track or a vehicle
+RAIL_VEHICLE_AXES = [
+    {"field": "track.rail.bending_stiffness", "start": 5.0e6, "stop": 8.0e6, "num": 10},
+    {"field": "vehicle.carbody_mass", "start": 15000.0, "stop": 30000.0, "num": 100},
+]
+
+
+def sweep_dict(
+    structural: bool = False, n_pads: int = 100, rail_vehicle: bool = False
+) -> dict[str, Any]:
+    if rail_vehicle:
+        d = sweep_dict()
+        d["title"] = "benchmark: rail EI x car body mass"
+        d["axes"] = RAIL_VEHICLE_AXES
+        return d
     second = (
         {
             "field": "track.pad.k0_n_per_m",
@@ -112,17 +129,26 @@ def main() -> None:
     p.add_argument("--sample", type=int, default=100)
     p.add_argument("--structural", action="store_true")
     p.add_argument("--large", action="store_true", help="the 10^4-case structural sweep")
+    p.add_argument("--rail-vehicle", action="store_true", help="rail EI x car body mass")
+    p.add_argument(
+        "--only-goals", action="store_true", help="skip the speed sweep unless it is asked for"
+    )
     args = p.parse_args()
     print(
         f"cores available: {os.cpu_count()}, workers: {args.workers}, load {os.getloadavg()[0]:.1f}"
     )
-    runs = [("10 temperatures x 100 speeds", False, 100, 10.0)]
+    runs = [] if args.only_goals else [("10 temperatures x 100 speeds", False, 100, 10.0)]
     if args.structural:
         runs.append(("10 temperatures x 100 pad stiffnesses", True, 100, None))
+    if args.rail_vehicle:
+        runs.append(("10 rail EI x 100 car body masses", "rail_vehicle", 0, None))
     if args.large:
         runs.append(("10 temperatures x 1000 pad stiffnesses", True, 1000, 10.0))
     for label, structural, n_pads, goal in runs:
-        spec = sweep_from_dict(sweep_dict(structural, n_pads))
+        if structural == "rail_vehicle":
+            spec = sweep_from_dict(sweep_dict(rail_vehicle=True))
+        else:
+            spec = sweep_from_dict(sweep_dict(bool(structural), n_pads))
         n = SweepLayout(spec).n_cases
         wall, rss = time_sweep(spec, args.workers)
         per_case = time_one_by_one(spec, args.sample)

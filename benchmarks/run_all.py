@@ -1,7 +1,8 @@
 """Run every benchmark script in this folder: ``python3 benchmarks/run_all.py``.
 
 Each script prints its goals as PASS/FAIL; the sweep benchmark runs all its sweeps
-(the speed sweep, the structural 1000- and 10^4-case sweeps).
+(the speed sweep, the structural 1000-case sweeps of pads and of rail x vehicle, the
+10^4-case sweep).
 """
 
 import subprocess
@@ -9,7 +10,7 @@ import sys
 from pathlib import Path
 
 #: arguments each script runs with here (all its goals)
-ARGS = {"bench_sweep.py": ["--structural", "--large"]}
+ARGS = {"bench_sweep.py": ["--structural", "--rail-vehicle", "--large"]}
 
 here = Path(__file__).resolve().parent
 failed = []

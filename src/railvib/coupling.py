@@ -13,7 +13,7 @@ each frequency costs a few 4x4 operations once the vehicle is condensed.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -24,7 +24,10 @@ from railvib.errors import CaseError
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
 from railvib.stack import dot, entries, put, solve, stacked, to_numpy
-from railvib.track.periodic import PeriodicTrack
+from railvib.track.compiled import compiled_receptance, use_compiled
+from railvib.track.periodic import VANISHING_LOSS_FACTOR, PeriodicTrack
+from railvib.track.periodic import _warn_if_ill_conditioned as warn_if_ill_conditioned
+from railvib.track.stacked import receptance_entries, stacked_waves
 from railvib.vehicle.assembly import Vehicle, WheelCondensation
 
 __all__ = [
@@ -34,6 +37,7 @@ __all__ = [
     "CoupledFRF",
     "CoupledSystem",
     "coupled_response",
+    "track_receptances",
 ]
 
 #: frequencies solved at once: each entry array of a block (64 kB) and the block's working
@@ -145,10 +149,15 @@ class CoupledSystem:
         step = default if block is None else max(1, int(block))
         x = self.wheel_positions
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
+        # one case's run uses the compiled kernel only where this process has loaded it
+        compiled = use_compiled(f.size, load=False)
         for start in range(0, max(f.size, 1), step):
             sl = slice(start, min(start + step, f.size))
             fb = f[sl]
-            rec = self.track.receptance(fb, x, x)
+            if compiled:
+                rec = track_receptances(fb, [self.track], [x], compiled=True)[0]
+            else:
+                rec = self.track.receptance(fb, x, x)
             v = excitation_vector(fb, delays)
             u_v, force, rail = coupled_response(
                 self.vehicle.condensed_to_wheels(fb), rec, self.contact_stiffness, v[..., None]
@@ -165,6 +174,104 @@ class CoupledSystem:
                     wheels=self.vehicle.wheel_names,
                 ),
             )
+
+
+def _stackable(track: PeriodicTrack) -> bool:
+    """Whether the stacked kernel gives `track`'s receptance: an Euler rail, the wave solver."""
+    return type(track).receptance is PeriodicTrack.receptance and not track.rail.is_timoshenko
+
+
+def _complex_ei(track: PeriodicTrack) -> complex:
+    """The rail's ``EI (1 + i eta)`` as the wave solver takes it (vanishing loss floored), N m^2."""
+    return track.rail.bending_stiffness * (
+        1.0 + 1j * max(track.rail.loss_factor, VANISHING_LOSS_FACTOR)
+    )
+
+
+def track_receptances(
+    f: NDArray[np.float64],
+    tracks: Sequence[PeriodicTrack],
+    positions: Sequence[NDArray[np.float64]],
+    compiled: bool | None = None,
+) -> NDArray[np.complex128]:
+    """Rail receptance between each track's contact points, ``(n_track, n_freq, n_w, n_w)``, m/N.
+
+    The tracks with an Euler rail on the wave solver and the same dimensionless wheel
+    positions ``x / d`` are one stack of (track, frequency) points, each point with its
+    own ``beta4 = m omega^2 d^4 / EI*``, support ``K*(f, T) d^3 / EI*`` and scale
+    ``d^3 / EI*``, solved in blocks of :data:`FREQUENCY_BLOCK` points: by the compiled
+    kernel (:mod:`railvib.track.compiled`) where it is available and the stack large
+    enough, else by the NumPy kernel (:mod:`railvib.track.stacked`), which also takes the
+    points the compiled one leaves to it. Other tracks (a Timoshenko rail) use their own
+    :meth:`~railvib.track.PeriodicTrack.receptance`.
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        Frequencies in Hz, ``(n_freq,)``.
+    tracks : sequence of PeriodicTrack
+        The tracks.
+    positions : sequence of numpy.ndarray
+        The contact positions on each track, m, ``(n_w,)`` each.
+    compiled : bool, optional
+        Whether to use the compiled kernel; default: where
+        :func:`railvib.track.compiled.use_compiled` allows it for the whole stack
+        (loading it now if the stack is large enough).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``[t, k, i, j]``: displacement at contact ``i`` per unit force at contact ``j``.
+    """
+    n_w = positions[0].size
+    out = np.empty((len(tracks), f.size, n_w, n_w), dtype=np.complex128)
+    stacks: dict[tuple[float, ...], list[int]] = {}
+    for i, (track, x) in enumerate(zip(tracks, positions, strict=True)):
+        if _stackable(track):
+            stacks.setdefault(tuple(x / track.sleeper_spacing), []).append(i)
+        else:
+            out[i] = track.receptance(f, x, x)
+    omega = 2.0 * np.pi * f
+    for x_d, members in stacks.items():
+        beta4, pad, scale = [], [], []
+        for i in members:
+            track = tracks[i]
+            track.check_frequencies(f)
+            d, ei = track.sleeper_spacing, _complex_ei(track)
+            # the wave solver's expressions, operation for operation
+            beta4.append(track.rail.mass_per_length * omega**2 * d**4 / ei)
+            pad.append(track.support_stiffness(f) * d**3 / ei)
+            scale.append(np.full(f.size, d**3 / ei))
+        b4, k, sc = (np.concatenate(v).astype(np.complex128) for v in (beta4, pad, scale))
+        points = np.tile(f, len(members))
+        x = np.array(x_d)
+        fast = use_compiled(points.size) if compiled is None else compiled
+        rec = np.empty((points.size, n_w, n_w), dtype=np.complex128)
+        for start in range(0, points.size, FREQUENCY_BLOCK):
+            sl = slice(start, start + FREQUENCY_BLOCK)
+            rec[sl], condition = _dimensionless(b4[sl], k[sl], x, fast)
+            warn_if_ill_conditioned(points[sl], condition)
+        out[members] = (rec * sc[:, None, None]).reshape(len(members), f.size, n_w, n_w)
+    return out
+
+
+def _dimensionless(
+    beta4: NDArray[np.complex128],
+    pad: NDArray[np.complex128],
+    x: NDArray[np.float64],
+    compiled: bool,
+) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+    """Dimensionless receptance of a block, and the matching's condition estimate."""
+    if compiled:
+        rec, condition, bad = compiled_receptance(beta4, pad, x, x)
+        if not bad.any():
+            return rec, condition
+        waves = stacked_waves(beta4[bad], pad[bad])
+        rec[bad] = stacked(receptance_entries(waves, x, x))
+        condition[bad] = waves.condition
+        return rec, condition
+    waves = stacked_waves(beta4, pad)
+    return np.asarray(stacked(receptance_entries(waves, x, x))), np.asarray(waves.condition)
 
 
 def coupled_response(

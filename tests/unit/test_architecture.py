@@ -70,6 +70,7 @@ LAZY_LIBRARIES = {
     "zarr": "a sweep's Zarr store, written chunk by chunk, only when assembling one",
     "cupy": "stacked kernels on a GPU, only when backend='cupy' is asked for (railvib.stack)",
     "jax": "stacked kernels on JAX, only when backend='jax' is asked for (railvib.stack)",
+    "numba": "the compiled wave kernel, only on a large stack (railvib.track.compiled)",
     "plotly": "the plotly.js text inlined in the reproduce report only (railvib.reproduce.report)",
 }
 

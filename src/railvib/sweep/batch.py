@@ -13,6 +13,7 @@ from __future__ import annotations
 import copy
 import json
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -34,7 +35,9 @@ from railvib.results.variables import compute_variables
 from railvib.solve import criteria_settings
 from railvib.sweep.layout import SweepLayout, is_cheap_field, is_pad_field
 from railvib.sweep.spec import SweepSpec
-from railvib.sweep.stacked import frf_pad_stack
+from railvib.sweep.stacked import frf_case_stack
+from railvib.track.compiled import use_compiled
+from railvib.track.periodic import PeriodicTrack
 from railvib.units import kmh_to_ms
 from railvib.vehicle.assembly import WheelCondensation
 
@@ -154,20 +157,6 @@ def _key(d: Any) -> str:
     return json.dumps(d, sort_keys=True)
 
 
-def _track_key(case: dict[str, Any]) -> str:
-    """Everything the rail receptance between the contact points depends on."""
-    veh = case["vehicle"]
-    return _key(
-        [
-            case["track"],
-            case["rail_model"],
-            case["contact"]["leading_wheel_position"],
-            veh["bogie_half_spacing"],
-            veh["wheelset_half_spacing"],
-        ]
-    )
-
-
 def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     """Solve every case of one chunk of a sweep, batching cases that share structure.
 
@@ -190,7 +179,9 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     base = spec.base_case_dict()
     f = build_grid(case_from_dict(base, warn=False)).f
     cases, groups = _chunk_cases(spec, layout, chunk_id)
-    frf, s_r, loads = _solve_groups(f, cases, groups)
+    # the compiled wave kernel where the whole sweep pays for loading it
+    compiled = use_compiled(len(cases) * f.size, work=layout.n_cases * f.size)
+    frf, s_r, loads = _solve_groups(f, cases, groups, compiled)
     needed = dict.fromkeys([*spec.variables, "psd_force", spec.summary_variable])
     values = compute_variables(frf, s_r, needed)  # each variable computed once
     out: dict[str, NDArray[Any]] = {name: values[name] for name in spec.variables}
@@ -360,7 +351,7 @@ def _with_field(d: Mapping[str, Any], parts: list[str], value: Any) -> dict[str,
 
 
 def _solve_groups(
-    f: NDArray[np.float64], cases: list[dict[str, Any]], groups: list[list[int]]
+    f: NDArray[np.float64], cases: list[dict[str, Any]], groups: list[list[int]], compiled: bool
 ) -> tuple[FRF, NDArray[np.float64], NDArray[np.float64]]:
     """Responses of every case, ``(n_case, n_freq, ...)``, its irregularity PSD and wheel loads.
 
@@ -369,61 +360,53 @@ def _solve_groups(
 
     A group's cases share everything but the pad, its temperature, the speed and the
     irregularity: its first case is validated and built, the others' pads are built from
-    their (validated) pad tables, and the group is solved as one stack
-    (:func:`railvib.sweep.stacked.frf_pad_stack`). Groups share the vehicle condensation
-    where their vehicles agree.
+    their (validated) pad tables. Every case of the chunk, whatever its group, is then
+    one stack (:func:`railvib.sweep.stacked.frf_case_stack`): cases with the same track
+    table and wheel positions share one track solution, cases with the same vehicle
+    table one condensation.
     """
     n_case = len(cases)
     s_r = np.empty((n_case, f.size))
-    loads: NDArray[np.float64] | None = None
-    out: dict[str, NDArray[np.complex128]] = {}
-    dofs: tuple[str, ...] = ()
-    wheels: tuple[str, ...] = ()
-    condensations: dict[str, WheelCondensation] = {}
+    systems: list[CoupledSystem | None] = [None] * n_case
+    loads: list[NDArray[np.float64] | None] = [None] * n_case
+    track_keys: list[str] = [""] * n_case
     pads: dict[str, PadModel] = {}
     spectra: dict[str, Any] = {}
     for members in groups:
         case = case_from_dict(cases[members[0]], warn=False)
         system = build_system(case)
-        first = cases[members[0]]
-        # the vehicle as built: its table, the train it repeats in, and half_car halving it
-        vkey = _key([first["vehicle"], first.get("train"), first["rail_model"] == "half_car"])
-        if vkey not in condensations:
-            condensations[vkey] = system.vehicle.condensed_to_wheels(f)
-        member_pads = []
-        factor = system.track.pad.factor if isinstance(system.track.pad, ScaledPad) else 1.0
-        for i in members:
-            table = cases[i]["track"]["pad"]
-            pkey = _key([table, factor])  # rail_pair doubles the pad: not the same pad
-            if pkey not in pads:
-                pads[pkey] = _pad_like(system.track.pad, table)
-            member_pads.append(pads[pkey])
-        batch = frf_pad_stack(
-            system,
-            f,
-            member_pads,
-            [cases[i]["track"].get("pad_temperature_c") for i in members],
-            [kmh_to_ms(cases[i]["speed_kmh"]) for i in members],
-            condensation=condensations[vkey],
-        )
         static = np.asarray(system.vehicle.static_wheel_loads(), dtype=float)
-        if loads is None:
-            loads = np.empty((n_case, static.size))
-            dofs, wheels = batch.dofs, system.vehicle.wheel_names
-        for name in ("vehicle", "rail", "contact_force"):
-            value = getattr(batch, name)
-            if name not in out:
-                out[name] = np.empty((n_case, *value.shape[1:]), dtype=np.complex128)
-            out[name][members] = value
-        loads[members] = static
+        # rail_pair doubles the pad: the same table under another reading is another pad
+        factor = system.track.pad.factor if isinstance(system.track.pad, ScaledPad) else 1.0
+        positions = system.wheel_positions.tolist()  # any vehicle or train: as built
+        tracks: dict[str, PeriodicTrack] = {}
         for i in members:
+            track = cases[i]["track"]
+            tkey = _key(track)
+            if tkey not in tracks:
+                pkey = _key([track["pad"], factor])
+                if pkey not in pads:
+                    pads[pkey] = _pad_like(system.track.pad, track["pad"])
+                tracks[tkey] = replace(
+                    system.track, pad=pads[pkey], pad_temperature=track.get("pad_temperature_c")
+                )
+            speed = kmh_to_ms(cases[i]["speed_kmh"])
+            systems[i] = replace(system, track=tracks[tkey], speed=speed)
+            loads[i] = static
+            track_keys[i] = _key([track, cases[i]["rail_model"], positions])
             ikey = _key(cases[i]["irregularity"])
             if ikey not in spectra:
                 spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
-            s_r[i] = spectra[ikey].temporal(f, kmh_to_ms(cases[i]["speed_kmh"]))
-    assert loads is not None, "every case belongs to one group"
-    frf = FRF(f, out["vehicle"], out["rail"], out["contact_force"], dofs, wheels=wheels)
-    return frf, s_r, loads
+            s_r[i] = spectra[ikey].temporal(f, speed)
+    frf = frf_case_stack(
+        f,
+        [s for s in systems if s is not None],
+        track_keys,
+        # the vehicle as built: its table, the train it repeats in, and half_car halving it
+        [_key([c["vehicle"], c.get("train"), c["rail_model"] == "half_car"]) for c in cases],
+        compiled=compiled,
+    )
+    return frf, s_r, np.stack([w for w in loads if w is not None])
 
 
 def _pad_like(template: PadModel, table: dict[str, Any]) -> PadModel:

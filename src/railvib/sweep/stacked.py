@@ -1,28 +1,30 @@
-"""Many cases of one structure solved in one stack: (case, frequency) points end to end.
+"""Many cases solved in one stack: (case, frequency) points end to end.
 
-Cases that differ in their railpad (model, parameters, temperature) and in speed
-share the rail, the sleeper spacing, the vehicle, the contact and the wheel positions.
-Their ``n_case x n_freq`` points are laid on one leading axis (case-major) and solved by
-one call of each kernel (``docs/design/0006-stacked-batches.md``):
+The cases of a sweep chunk may differ in any parameter of the rail (EI, m, loss), the
+sleeper spacing, the railpad (model, parameters, temperature), the vehicle (masses,
+suspension), the contact stiffness, the leading wheel position and the speed. Their
+points are laid on one leading axis (case-major) and solved by one call of each kernel
+in cache-sized blocks (``docs/design/0006-stacked-batches.md``):
 
-* the pad's ``K*(f, T)`` of every case is evaluated into the stack, and the track's own
-  wave solution (:meth:`railvib.track.PeriodicTrack.receptance`) runs once over it, with
-  a stand-in pad (:class:`PadStack`) that hands it the stacked values;
-* the vehicle is condensed once on the frequencies and broadcast over the cases;
+* each distinct track's ``beta4 = m omega^2 d^4 / EI*``, support ``K*(f, T) d^3 / EI*``
+  and scale ``d^3 / EI*`` are evaluated into the stack, and the stacked wave kernel
+  (:mod:`railvib.track.stacked`, the track's own algorithm) runs over all of them at
+  once; tracks the kernel does not cover (a Timoshenko rail) use their own solver;
+* each distinct vehicle is condensed once on the frequencies;
 * the coupled 4x4 solve runs on entry arrays ``(n_case, n_freq)``, each case with its
-  own speed's excitation.
+  own vehicle, contact stiffness and speed's excitation.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from collections.abc import Hashable, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
+from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem, track_receptances
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
@@ -31,31 +33,98 @@ from railvib.track.slab import SlabTrack
 from railvib.track.stacked import receptance_entries, stacked_waves
 from railvib.vehicle.assembly import WheelCondensation
 
-__all__ = ["PadStack", "frf_pad_stack", "frf_stack"]
+__all__ = ["frf_case_stack", "frf_pad_stack", "frf_stack"]
 
 
-@dataclass(frozen=True, eq=False)
-class PadStack(PadModel):
-    """Railpad stiffness given point by point over a stack (not a case-file model).
+def frf_case_stack(
+    f: ArrayLike,
+    systems: Sequence[CoupledSystem],
+    track_keys: Sequence[Hashable] | None = None,
+    vehicle_keys: Sequence[Hashable] | None = None,
+    condensations: Mapping[Hashable, WheelCondensation] | None = None,
+    compiled: bool | None = None,
+) -> FRF:
+    """Coupled FRFs of cases that may differ in every structural parameter, in one stack.
+
+    Each case has its own coupled system: rail (EI, m, loss), sleeper spacing, pad and
+    its temperature, vehicle (masses, suspension), contact stiffness, leading wheel
+    position and speed. The track solutions of the distinct tracks are laid end to end
+    as (track, frequency) points and solved by the stacked wave kernel
+    (:mod:`railvib.track.stacked`) in cache-sized blocks, whatever their rail, spacing
+    and pad; the distinct vehicles are condensed once each; the coupled solve runs on
+    entry arrays ``(n_case, n_freq)``, each case with its own vehicle, contact stiffness
+    and speed. A track the stacked kernel does not cover (a Timoshenko rail, a track
+    model with its own receptance) is solved by its own
+    :meth:`~railvib.track.PeriodicTrack.receptance`.
+
+    Equals :meth:`railvib.coupling.CoupledSystem.frf` of each system to rounding.
 
     Parameters
     ----------
-    values : numpy.ndarray
-        ``K*`` in N/m at each point of the stack, ``(n_point,)``; :meth:`stiffness` must
-        be asked at exactly that many frequencies.
+    f : array_like
+        Frequencies in Hz, ``(n_freq,)``.
+    systems : sequence of CoupledSystem
+        The coupled system of each case, ``n_case`` (all vehicles with the same DOFs).
+    track_keys : sequence of hashable, optional
+        Cases with equal keys share one track solution (their tracks and wheel positions
+        agree); default: the identity of the track and the wheel positions.
+    vehicle_keys : sequence of hashable, optional
+        Cases with equal keys share one vehicle condensation; default: the vehicle's
+        identity.
+    condensations : mapping, optional
+        Vehicle condensations at `f` already known, by vehicle key.
+    compiled : bool, optional
+        Whether the track solutions use the compiled kernel
+        (:func:`railvib.coupling.track_receptances`; default: where it pays for this stack).
+
+    Returns
+    -------
+    FRF
+        Arrays ``(n_case, n_freq, n)``: the case is the leading batch axis.
     """
-
-    values: NDArray[np.complex128]
-
-    def __post_init__(self) -> None:
-        """Nothing to check: the values come from validated pad models."""
-
-    def stiffness(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.complex128]:
-        """The stacked ``K*`` in N/m (`f`, Hz, only fixes the count; `temperature` ignored)."""
-        n = np.size(f)
-        if n != self.values.size:
-            raise CaseError("frequency", n, f"the {self.values.size} points of the pad stack")
-        return self.values
+    f = np.atleast_1d(np.asarray(f, dtype=float))
+    n_case = len(systems)
+    if track_keys is None:
+        track_keys = [(id(s.track), tuple(s.wheel_positions)) for s in systems]
+    if vehicle_keys is None:
+        vehicle_keys = [id(s.vehicle) for s in systems]
+    track_of, track_first = _distinct_keys(track_keys)
+    vehicle_of, vehicle_first = _distinct_keys(vehicle_keys)
+    dofs = systems[0].vehicle.dofs
+    if any(systems[i].vehicle.dofs != dofs for i in vehicle_first):
+        raise CaseError("vehicle", "several DOF sets", "the same vehicle DOFs in every case")
+    per_track = track_receptances(
+        f,
+        [systems[i].track for i in track_first],
+        [systems[i].wheel_positions for i in track_first],
+        compiled,
+    )
+    known = {} if condensations is None else condensations
+    conds = [
+        known[vehicle_keys[i]]
+        if vehicle_keys[i] in known
+        else systems[i].vehicle.condensed_to_wheels(f)
+        for i in vehicle_first
+    ]
+    cond = _stacked_condensations(conds)
+    contact = np.array([s.contact_stiffness for s in systems])
+    delays = np.stack([s.vehicle.wheel_offsets / s.speed for s in systems])  # (n_case, n_w)
+    excitation = np.exp(-2j * np.pi * f[None, :, None] * delays[:, None, :])
+    step = max(1, FREQUENCY_BLOCK // f.size)  # cases per cache-sized block
+    n_w = delays.shape[1]
+    u_v = np.empty((n_case, f.size, len(dofs)), dtype=np.complex128)
+    rail = np.empty((n_case, f.size, n_w), dtype=np.complex128)
+    force = np.empty((n_case, f.size, n_w), dtype=np.complex128)
+    for c in range(0, n_case, step):
+        blk = slice(c, c + step)
+        vehicle = cond if len(conds) == 1 else _pick(cond, vehicle_of[blk])
+        n = per_track.shape[-1]
+        rec = [[per_track[track_of[blk], :, a, b] for b in range(n)] for a in range(n)]
+        parts = _coupled_entries(vehicle, rec, contact[blk, None], excitation[blk], np, True)
+        for whole, entries in zip((u_v, rail, force), parts, strict=True):
+            for i, e in enumerate(entries):  # each entry written once, into its place
+                whole[blk, :, i] = e
+    return FRF(f, u_v, rail, force, dofs, wheels=systems[0].vehicle.wheel_names)
 
 
 def frf_pad_stack(
@@ -68,8 +137,8 @@ def frf_pad_stack(
 ) -> FRF:
     """Coupled FRFs of cases differing in pad, pad temperature and speed, in one stack.
 
-    Equals :meth:`railvib.coupling.CoupledSystem.frf` of each case (`system` with its
-    pad, temperature and speed replaced) to rounding.
+    :func:`frf_case_stack` of `system` with each case's pad, temperature and speed;
+    equals :meth:`railvib.coupling.CoupledSystem.frf` of each case to rounding.
 
     Parameters
     ----------
@@ -92,81 +161,73 @@ def frf_pad_stack(
     FRF
         Arrays ``(n_case, n_freq, n)``: the case is the leading batch axis.
     """
-    f = np.atleast_1d(np.asarray(f, dtype=float))
     speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
-    n_case = speeds.size
-    if len(pads) != n_case or len(temperatures) != n_case:
-        raise CaseError("pads", len(pads), f"one pad and temperature per speed ({n_case})")
-    # the distinct (pad, temperature) pairs: one track solution each
-    distinct: dict[tuple[int, float | None], int] = {}
-    which = np.array(
-        [
-            distinct.setdefault((id(p), t), len(distinct))
-            for p, t in zip(pads, temperatures, strict=True)
-        ]
+    if len(pads) != speeds.size or len(temperatures) != speeds.size:
+        raise CaseError("pads", len(pads), f"one pad and temperature per speed ({speeds.size})")
+    tracks: dict[tuple[int, float | None], Any] = {}
+    systems = []
+    for pad, t, v in zip(pads, temperatures, speeds, strict=True):
+        if (id(pad), t) not in tracks:
+            tracks[id(pad), t] = replace(system.track, pad=pad, pad_temperature=t)
+        systems.append(replace(system, track=tracks[id(pad), t], speed=float(v)))
+    known: dict[Hashable, WheelCondensation] | None = (
+        None if condensation is None else {0: condensation}
     )
-    first = {k: pads[int(np.flatnonzero(which == i)[0])] for k, i in distinct.items()}
-    k_pad = np.concatenate([first[k].stiffness(f, k[1]) for k in distinct]).astype(np.complex128)
-    x = system.wheel_positions
-    points = np.tile(f, len(distinct))
-    rec = np.empty((points.size, x.size, x.size), dtype=np.complex128)
-    # the stacked pad ignores the temperature, but the track's other layers (a ballasted
-    # track's ballast) take it: the points are solved in cache-sized blocks of one
-    # temperature each
-    rows = np.arange(points.size).reshape(len(distinct), f.size)
-    for temperature in dict.fromkeys(t for _, t in distinct):
-        at = rows[[i for i, (_, t) in enumerate(distinct) if t == temperature]].ravel()
-        for start in range(0, at.size, FREQUENCY_BLOCK):
-            idx = at[start : start + FREQUENCY_BLOCK]
-            track = replace(system.track, pad=PadStack(k_pad[idx]), pad_temperature=temperature)
-            rec[idx] = track.receptance(points[idx], x, x)
-    vehicle = system.vehicle
-    cond = vehicle.condensed_to_wheels(f) if condensation is None else condensation
-    delays = vehicle.wheel_offsets[None, :] / speeds[:, None]  # (n_case, n_w)
-    phase = -2j * np.pi * f[None, :, None] * delays[:, None, :]
-    excitation = np.exp(phase)  # (n_case, n_freq, n_w)
-    per_track = rec.reshape(len(distinct), f.size, x.size, x.size)
-    step = max(1, FREQUENCY_BLOCK // f.size)  # cases per cache-sized block
-    parts = [
-        _coupled_stack(
-            cond,
-            per_track,
-            system.contact_stiffness,
-            excitation[c : c + step],
-            which[c : c + step],
-        )
-        for c in range(0, n_case, step)
-    ]
-    u_v, rail, force = (np.concatenate([p[i] for p in parts]) for i in range(3))
-    return FRF(f, u_v, rail, force, vehicle.dofs)
+    return frf_case_stack(f, systems, None, [0] * len(systems), known)
 
 
-def _coupled_stack(
-    vehicle: WheelCondensation,
-    receptance: NDArray[np.complex128],
-    contact_stiffness: float,
-    excitation: NDArray[np.complex128],
-    which: NDArray[np.int64],
-    xp: Any = np,
-) -> tuple[Any, Any, Any]:
-    """:func:`railvib.coupling.coupled_response` on entries ``(n_case, n_freq)``.
+def _distinct_keys(keys: Sequence[Hashable]) -> tuple[NDArray[np.int64], list[int]]:
+    """The number of each key's distinct value, and the first case of each value."""
+    number: dict[Hashable, int] = {}
+    first: list[int] = []
+    which = np.empty(len(keys), dtype=np.int64)
+    for i, k in enumerate(keys):
+        if k not in number:
+            number[k] = len(first)
+            first.append(i)
+        which[i] = number[k]
+    return which, first
 
-    `receptance` holds ``(n_track, n_freq, n_w, n_w)``, the track solutions; case ``c``
-    uses number ``which[c]``. The vehicle's entries ``(n_freq,)`` broadcast over the cases.
+
+def _stacked_condensations(conds: Sequence[WheelCondensation]) -> WheelCondensation:
+    """Condensations of several vehicles as one, entries ``(n_vehicle, n_freq)``.
+
+    One vehicle is returned as it is (entries ``(n_freq,)``, broadcast over the cases).
     """
-    n = receptance.shape[-1]
-    rec = [[receptance[which, :, a, b] for b in range(n)] for a in range(n)]
-    return _coupled_entries(vehicle, rec, contact_stiffness, excitation, xp)
+    if len(conds) == 1:
+        return conds[0]
+
+    def join(name: str) -> list[list[Any]]:
+        rows = getattr(conds[0], name)
+        return [
+            [np.stack([getattr(c, name)[a][b] for c in conds]) for b in range(len(rows[a]))]
+            for a in range(len(rows))
+        ]
+
+    return WheelCondensation(join("stiffness_entries"), join("recovery_entries"))
+
+
+def _pick(cond: WheelCondensation, which: NDArray[np.int64]) -> WheelCondensation:
+    """The rows `which` of stacked condensations: entries ``(n_case, n_freq)``."""
+    return WheelCondensation(
+        [[e[which] for e in row] for row in cond.stiffness_entries],
+        [[e[which] for e in row] for row in cond.recovery_entries],
+    )
 
 
 def _coupled_entries(
     vehicle: WheelCondensation,
     rec: list[list[Any]],
-    contact_stiffness: float,
+    contact_stiffness: Any,
     excitation: Any,
     xp: Any,
+    as_entries: bool = False,
 ) -> tuple[Any, Any, Any]:
-    """The coupled solve on receptance entries ``(n_case, n_freq)`` (excitation last: wheel)."""
+    """The coupled solve on receptance entries ``(n_case, n_freq)`` (excitation last: wheel).
+
+    Returns the vehicle, rail and contact-force responses stacked on a last axis, or, with
+    `as_entries`, as their lists of entry arrays.
+    """
     s = vehicle.stiffness_entries
     n = len(rec)
     flex = [
@@ -187,6 +248,8 @@ def _coupled_entries(
     force = [-dot(s[a], u_w) for a in range(n)]
     vehicle_u = [dot(row, u_w) for row in vehicle.recovery_entries]
     rail = [dot(rec[a], force) for a in range(n)]
+    if as_entries:
+        return vehicle_u, rail, force
     out = tuple(xp.stack(v, axis=-1) for v in (vehicle_u, rail, force))
     return out[0], out[1], out[2]
 
