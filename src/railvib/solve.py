@@ -35,6 +35,7 @@ from railvib.outputs import (
     octave_table,
     third_octave_bands,
 )
+from railvib.outputs.supports import support_force_variables
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
 from railvib.plot import OVERVIEW_STEMS
 from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
@@ -136,6 +137,7 @@ def run_system(
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         ds = build_dataset_blocks(f, system.frf_blocks(f), s_r, attrs=meta, extra=extra)
     check_finite(ds)  # before the derived outputs, which assume finite PSDs
+    ds = ds.assign(support_force_variables(system, ds))
     ds = derive(ds, DEFAULT_OUTPUTS, settings)
     return derive(ds, list(criteria or {}), criteria) if criteria else ds
 

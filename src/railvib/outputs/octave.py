@@ -264,7 +264,8 @@ class ThirdOctave(DerivedOutput):
         """Band mean squares and levels of acceleration, velocity, displacement and force.
 
         Reads ``psd_acceleration``, ``psd_displacement`` (``frequency``, ``response``)
-        and ``psd_force`` (``frequency``, ``wheel``). Velocity PSD is the acceleration
+        and ``psd_force`` (``frequency``, ``wheel``), and ``psd_support_force``
+        (``frequency``, ``wheel``, ``layer``) where the run has it. Velocity PSD is the acceleration
         PSD over ``(2 pi f)^2``. Pitch responses are in rad-based units; their levels
         use the same numbers as references (1e-6 rad/s^2, ...), which no standard
         defines: read them as relative levels only.
@@ -282,6 +283,8 @@ class ThirdOctave(DerivedOutput):
             "displacement": (ds["psd_displacement"], ones, "m"),
             "force": (ds["psd_force"], ones, "N"),
         }
+        if "psd_support_force" in ds:  # the layers of the seat under each wheel
+            sources["support_force"] = (ds["psd_support_force"], ones, "N")
         for quantity, (psd, divisor, unit) in sources.items():
             axis = psd.get_axis_num("frequency")
             shape = [-1 if d == "frequency" else 1 for d in psd.dims]
@@ -294,7 +297,7 @@ class ThirdOctave(DerivedOutput):
             )
             names = [quantity, "velocity_vdb"] if quantity == "velocity" else [quantity]
             for name in names:
-                ref, label = REFERENCES[name]
+                ref, label = REFERENCES["force" if name == "support_force" else name]
                 out[f"octave_level_{name}"] = xr.DataArray(
                     level_db(ms, ref),
                     dims=dims,

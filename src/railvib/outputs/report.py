@@ -94,6 +94,18 @@ def criteria_table(ds: xr.Dataset) -> pd.DataFrame:
                     "standard": "",
                 },
             ]
+        if "support_force_rms" in ds:
+            rows += [
+                {
+                    "criterion": f"{layer} force RMS at the seat under the wheel",
+                    "where": f"{where} (seat at x = {float(ds['support_position'].values[j]):g} m)",
+                    "value": float(ds["support_force_rms"].sel(layer=layer).values[j]),
+                    "unit": "N",
+                    "category": "",
+                    "standard": "per seat of one rail",
+                }
+                for layer in ds["layer"].values
+            ]
         rows.append(
             {
                 "criterion": "loss-of-contact probability",
@@ -110,7 +122,7 @@ def criteria_table(ds: xr.Dataset) -> pd.DataFrame:
 
 
 def criteria_lines(ds: xr.Dataset) -> list[str]:
-    """A few lines for a run's summary: ride comfort and the dynamic load factor.
+    """A few lines for a run's summary: ride comfort, the dynamic load factor, seat forces.
 
     Parameters
     ----------
@@ -146,6 +158,17 @@ def criteria_lines(ds: xr.Dataset) -> list[str]:
             f"wheel-rail forces: dynamic load factor 1 + 3 sigma/P0 = {float(factor[j]):.3g} "
             f"at the worst wheel ({wheel_name(ds['response'].values, j)}: 3 sigma = "
             f"{float(ds['dynamic_load_3sigma'].values[j]):.3g} N)"
+        )
+    if "support_force_rms" in ds:
+        rms = ds["support_force_rms"].transpose("wheel", "layer").values
+        j = int(np.argmax(rms[:, 0]))
+        layers = ", ".join(
+            f"{layer} {rms[j, k]:.3g} N" for k, layer in enumerate(ds["layer"].values)
+        )
+        lines.append(
+            f"rail-seat forces (per seat of one rail, RMS): {layers} at the seat under the "
+            f"worst wheel ({wheel_name(ds['response'].values, j)}, x = "
+            f"{float(ds['support_position'].values[j]):.4g} m)"
         )
     if "octave_level_acceleration" in ds:
         nominal = ds["band_nominal"].values

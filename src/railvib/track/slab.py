@@ -343,6 +343,27 @@ class SlabTrack(PeriodicTrack):
         """
         raise NotImplementedError(f"{type(self).__name__} does not give its support forces yet")
 
+    def seat_response(
+        self, f: ArrayLike, x: NDArray[np.float64], rail: NDArray[np.complex128]
+    ) -> SupportResponse:
+        """Not modelled for a slab track yet: its seats share the slab (NotImplementedError).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies, Hz.
+        x : numpy.ndarray
+            Seat positions, m.
+        rail : numpy.ndarray
+            Rail displacement at the seats, m.
+
+        Raises
+        ------
+        NotImplementedError
+            Always (a run then gives no support-force variables).
+        """
+        raise NotImplementedError(f"{type(self).__name__} does not give its seat forces yet")
+
     def support_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Not defined for a slab track: the slab couples the fasteners (raises CaseError).
 

@@ -1,0 +1,104 @@
+"""Forces through the rail seats under the wheels: pad, ballast and subgrade (issue 16).
+
+The rail displacement at a seat follows from the contact forces through the track's
+transfer receptance, ``w(x_s) = sum_j alpha(x_s, x_j) P_j`` (``P`` compressive positive,
+displacements positive downward: :mod:`railvib.coupling`), and the seat's layers from
+that displacement (:meth:`railvib.track.PeriodicTrack.seat_response`). Both are linear,
+so the force of each layer per metre of irregularity is an FRF like the contact force's,
+and its PSD is ``|H|^2 S_r``.
+
+The seat of each wheel is the rail seat nearest it (at exactly mid-span, the one ahead).
+Forces are per rail seat of one rail: a ``rail_pair`` track, whose seats stand for both
+rails, is divided by its factor 2. Slab tracks couple their fasteners' supports and do
+not give seat forces yet: they get no support-force variables.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from railvib.coupling import CoupledSystem
+from railvib.grid import trapezoid
+from railvib.pads.scaled import ScaledPad
+
+__all__ = ["seat_positions", "support_force_variables"]
+
+
+def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDArray[np.float64]:
+    """The rail seat nearest each wheel (the one ahead at exactly mid-span), m.
+
+    Parameters
+    ----------
+    wheel_positions : numpy.ndarray
+        Wheel positions along the rail, m.
+    spacing : float
+        Sleeper (fastener) spacing, m; seats lie at ``n * spacing``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Seat positions, m, one per wheel.
+    """
+    # 1e-9 of a bay: a wheel at mid-span up to rounding (-12.3 / 0.6 = -20.500000000000004)
+    # still takes the seat ahead
+    return np.floor(np.asarray(wheel_positions, dtype=float) / spacing + 0.5 + 1e-9) * spacing
+
+
+def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, xr.DataArray]:
+    """PSD and RMS of the force in each layer of the seat under each wheel.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The system of the result (its track and wheel positions).
+    ds : xarray.Dataset
+        The result as built in memory: ``frf_force`` (complex contact force per metre of
+        irregularity, N/m) and ``irregularity_psd`` (m^2/Hz) over ``frequency``.
+
+    Returns
+    -------
+    dict of str to xarray.DataArray
+        ``psd_support_force`` (``frequency``, ``wheel``, ``layer``), N^2/Hz, and
+        ``support_force_rms`` (``wheel``, ``layer``), N, with the ``layer`` coordinate
+        (``pad``, then ``ballast``, ``subgrade`` where the track has them) and
+        ``support_position`` (``wheel``, m); empty for a track without seat forces.
+    """
+    track = system.track
+    f = ds["frequency"].values
+    seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
+    contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
+    try:
+        receptance = track.receptance(f, system.wheel_positions, seats)  # (f, seat, wheel)
+        rail = np.einsum("fsw,fw->fs", receptance, contact)
+        layers = track.seat_response(f, seats, rail).force
+    except NotImplementedError:  # a slab track: its seats are not modelled one by one
+        return {}
+    per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
+    names = list(layers)
+    frf = np.stack([layers[name] for name in names], axis=-1) / per_rail  # (f, wheel, layer)
+    psd = np.abs(frf) ** 2 * ds["irregularity_psd"].values[:, None, None]
+    coords = {
+        "layer": ("layer", names, {"long_name": "layer of the rail seat, top down"}),
+        "support_position": (
+            "wheel",
+            seats,
+            {"units": "m", "long_name": "rail seat under each wheel (the nearest one)"},
+        ),
+    }
+    where = "through the rail seat nearest each wheel, per seat of one rail"
+    return {
+        "psd_support_force": xr.DataArray(
+            psd,
+            dims=("frequency", "wheel", "layer"),
+            coords=coords,
+            attrs={"units": "N^2/Hz", "long_name": f"PSD of the force in each layer {where}"},
+        ),
+        "support_force_rms": xr.DataArray(
+            np.sqrt(trapezoid(psd, f, axis=0)),
+            dims=("wheel", "layer"),
+            coords=coords,
+            attrs={"units": "N", "long_name": f"RMS of the force in each layer {where}"},
+        ),
+    }
