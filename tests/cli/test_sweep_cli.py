@@ -1,5 +1,6 @@
 """``railvib sweep``: run, resume, errors on one line, plots and exports."""
 
+import pytest
 import tomli_w
 import xarray as xr
 
@@ -116,6 +117,7 @@ def test_plot_sweep_lines_and_heatmap(tmp_path):
     assert len(ax.collections) == 1  # a heat map over the two axes
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_plot_commands_default_to_the_sweep_folder(tmp_path, capsys):
     f = tmp_path / "s.toml"
     f.write_text(tomli_w.dumps(small_sweep()))

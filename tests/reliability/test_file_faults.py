@@ -99,6 +99,7 @@ def test_unwritable_output_folder_is_one_line_and_keeps_the_earlier_set(tmp_path
         os.chmod(out, 0o755)
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_unwritable_parent_folder_is_one_line_and_makes_nothing(tmp_path):
     parent = tmp_path / "locked"
     parent.mkdir(mode=0o555)
@@ -222,6 +223,7 @@ def test_atomic_path_names_the_file_and_removes_the_temporary(tmp_path):
 # --- standard output ---------------------------------------------------------------
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_standard_output_on_a_full_disk_is_one_line():
     with open("/dev/full", "w") as full:
         result = run_cli("template", stdout=full.fileno())

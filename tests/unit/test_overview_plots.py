@@ -95,6 +95,7 @@ def test_pad_figure_shows_storage_stiffness_and_loss_factor(figures, ds):
     )
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_run_to_folder_writes_every_png_through_save_figure(tmp_path, monkeypatch):
     saved = []
     real = psd_plot.save_figure

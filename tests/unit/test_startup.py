@@ -50,6 +50,7 @@ def test_cli_help_loads_no_numerical_library():
     assert _loaded_after("from railvib.cli.main import main\nmain(['pad', 'fit', '--help'])")
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_the_run_pipeline_loads_no_fitting_statistics_or_plotting():
     # main: scipy.optimize (pads.fit, 0.2 s) and scipy.stats (one norm.cdf, 0.35 s)
     unwanted = ("scipy.optimize", "scipy.stats", "scipy.integrate", "matplotlib")
@@ -70,6 +71,7 @@ def test_the_facade_loads_names_on_first_use_as_before():
         _ = railvib.not_a_name
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_no_library_module_switches_the_matplotlib_backend(tmp_path):
     # main: importing railvib.plot.* (or railvib reproduce/padfit) called matplotlib.use("Agg")
     code = (
@@ -98,6 +100,7 @@ def test_no_library_module_calls_matplotlib_use():
     assert offenders == []
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_file_figures_are_not_pyplot_figures(tmp_path):
     import matplotlib.pyplot as plt
 
@@ -193,6 +196,7 @@ def test_superscript_tick_labels_read_as_matplotlib_mathtext():
     assert SuperscriptLogFormatter(labelOnlyBase=True)(2e-5) == ""  # matplotlib's choice kept
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_overview_figures_keep_their_dpi_and_size(result, tmp_path):
     from matplotlib.image import imread
 
@@ -210,6 +214,7 @@ def test_netcdf_round_trip_is_unchanged(result, tmp_path):
     xr.testing.assert_identical(out.drop_attrs(deep=False), result.drop_attrs(deep=False))
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 @pytest.mark.parametrize("title", [None, "short", "a long title " * 16])
 def test_overview_figures_with_fixed_margins_keep_everything_inside(title):
     # the margins are not measured per figure: check nothing is cut off, for suptitles of

@@ -105,6 +105,7 @@ def test_deprecated_finite_track_frf_warns_and_equals_new_form(system):
     assert old.labels == new.labels
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_deprecated_monte_carlo_warns_and_equals_new_form(system):
     new = monte_carlo(system, SPECTRUM, settings=TINY_MC, seed=3)
     with pytest.warns(RailvibDeprecationWarning, match=r"monte_carlo\(system, spectrum"):
@@ -114,6 +115,7 @@ def test_deprecated_monte_carlo_warns_and_equals_new_form(system):
     assert old.labels == new.labels
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_deprecated_validate_case_warns_and_equals_new_form(system, tiny_result):
     with pytest.warns(RailvibDeprecationWarning, match=r"validate_case\(system, spectrum"):
         old = validate_case(

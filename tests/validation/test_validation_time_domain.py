@@ -36,6 +36,7 @@ def system():
     )
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 @pytest.mark.parametrize("f0", [47.0, 300.0])
 def test_harmonic_steady_state_matches_frequency_domain(system, f0):
     # a delayed sinusoidal irregularity: after the transients the Newmark amplitude equals

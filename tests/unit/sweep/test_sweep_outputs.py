@@ -50,6 +50,7 @@ def test_describe_run():
     )
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_save_sweep_extras_writes_what_is_asked(done, tmp_path):
     _, ds = done
     assert save_sweep_extras(ds, tmp_path / "none") == []

@@ -128,6 +128,7 @@ def test_lines_cross_out_the_invalid_case(swept):
     )
 
 
+@pytest.mark.slow  # 2-8 s (a subprocess, figures or a Monte Carlo): kept out of the fast suite
 def test_heat_map_crosses_out_the_invalid_cells(tmp_path):
     d = _sweep(
         axes=[
