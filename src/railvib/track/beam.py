@@ -25,6 +25,8 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.track.timoshenko import wavenumbers
+
 __all__ = ["dynamic_stiffness", "field_transfer", "krylov_series", "timoshenko_transfer"]
 
 
@@ -147,9 +149,13 @@ def dynamic_stiffness(beta4: ArrayLike, length: float) -> NDArray[np.complex128]
 
 
 def timoshenko_transfer(
-    beta4: ArrayLike, shear_flexibility: complex, rotary: ArrayLike, length: float
+    beta4: ArrayLike,
+    shear_flexibility: complex,
+    rotary: ArrayLike,
+    length: float,
+    rho_eps: ArrayLike | None = None,
 ) -> NDArray[np.complex128]:
-    """Field transfer matrix of a Timoshenko span, ``(n_freq, 4, 4)``.
+    """Field transfer matrix of a Timoshenko span, ``(n_freq, 4, 4)``, in closed form.
 
     State ``y = (w, psi, psi', v)`` with ``psi`` the cross-section rotation and
     ``v = -S / EI`` (``S`` the shear force; ``v = w'''`` in the Euler limit), all
@@ -158,9 +164,16 @@ def timoshenko_transfer(
     ``A = [[0, 1, 0, -eps], [0, 0, 1, 0], [0, -rho, 0, 1], [beta4, 0, 0, 0]]``,
 
     ``eps = EI / (kappa G A L0^2)`` and ``rho = rho_I omega^2 L0^2 / EI``; ``tr A = 0``
-    so ``det exp(A L) = 1``. ``eps = rho = 0`` gives :func:`field_transfer`. The
-    matrix exponential is an entire function of the entries (no poles); it is
-    evaluated by :func:`scipy.linalg.expm`, stacked over frequency.
+    so ``det exp(A L) = 1``. ``eps = rho = 0`` gives :func:`field_transfer`. ``A^2`` has
+    the eigenvalues ``b^2`` and ``-a^2`` (:func:`railvib.track.timoshenko.wavenumbers`),
+    so with ``N = A^2 + a^2 I`` (entries ``rho + b^2``, ``b^2 + eps beta4``, 1, ``beta4``)
+
+    ``exp(A x) = cos(ax) I + sin(ax)/a A + D0 N + D1 A N``,
+
+    ``D0 = (cosh bx - cos ax)/(a^2 + b^2) = x^2/2 sinc((a + ib)x/2) sinc((a - ib)x/2)``
+    and ``D1 = (sinh(bx)/b - sin(ax)/a)/(a^2 + b^2)`` (:func:`_odd_divided_difference`).
+    Every term is even in ``a`` and in ``b`` (no branch is chosen) and holds below, at
+    and above the cut-off (``b = 0``); docs/design/0002-track-solver.md.
 
     Parameters
     ----------
@@ -172,20 +185,95 @@ def timoshenko_transfer(
         ``rho = rho_I omega^2 L0^2 / EI*`` per frequency (dimensionless), shape ``(n_freq,)``.
     length : float
         Dimensionless span length (signed).
+    rho_eps : array_like of complex, optional
+        ``rho eps = rho_I omega^2 / kappa G A*`` formed directly (dimensionless, 1 at the
+        cut-off), ``(n_freq,)``; by default ``rotary * shear_flexibility``.
 
     Returns
     -------
     numpy.ndarray
         Complex array ``(n_freq, 4, 4)``.
     """
-    from scipy.linalg import expm
-
     b4 = np.atleast_1d(np.asarray(beta4, dtype=complex))
-    a = np.zeros(b4.shape + (4, 4), dtype=complex)
-    a[..., 0, 1] = 1.0
-    a[..., 0, 3] = -shear_flexibility
-    a[..., 1, 2] = 1.0
-    a[..., 2, 1] = -np.asarray(rotary, dtype=complex)
-    a[..., 2, 3] = 1.0
-    a[..., 3, 0] = b4
-    return np.asarray(expm(a * length), dtype=np.complex128)
+    rho = np.broadcast_to(np.asarray(rotary, dtype=complex), b4.shape)
+    eps = complex(shear_flexibility)
+    rho_eps_ = rho * eps if rho_eps is None else np.asarray(rho_eps, dtype=complex)
+    a2, b2, rho_b2, eb_b2, r = wavenumbers(b4, eps, rho, rho_eps_)
+    x = float(length)
+    a, b = np.sqrt(a2), np.sqrt(b2)
+    cos_a = np.cos(a * x)
+    sin_a = x * _sinc(a * x)  # sin(ax) / a
+    d0 = 0.5 * x * x * _sinc(0.5 * x * (a + 1j * b)) * _sinc(0.5 * x * (a - 1j * b))
+    d1 = _odd_divided_difference(a, b, r, rho + eps * b4, b4 * (1.0 - rho_eps_), x)
+    diag_r, diag_e = cos_a + d0 * rho_b2, cos_a + d0 * eb_b2
+    d0_b4, d1_b4 = d0 * b4, d1 * b4
+    # 1 - eps (rho + b^2) = (1 - rho eps)(rho + b^2) / a^2 (vanishes at the cut-off)
+    shear_03 = d1 * (1.0 - rho_eps_) * rho_b2 / a2 - eps * sin_a
+    rows = (
+        (diag_r, sin_a + d1 * b2, d0, shear_03),
+        (d1_b4, diag_e, sin_a + d1 * eb_b2, d0),
+        (d0_b4, d1 * eb_b2 * b2 - rho * sin_a, diag_e, sin_a + d1 * b2),
+        (b4 * sin_a + d1_b4 * rho_b2, d0_b4, d1_b4, diag_r),
+    )
+    out = np.empty(b4.shape + (4, 4), dtype=complex)
+    for i, row in enumerate(rows):
+        for j, entry in enumerate(row):
+            out[..., i, j] = entry
+    return out
+
+
+#: below this ``|z|^2`` the sinc and sinhc of ``z`` come from their series (error
+#: ``|z|^4 / 120``, below 1e-17)
+_SERIES_Z2 = 1e-8
+
+#: largest ``max(|a|^2, |b|^2) x^2`` where :func:`_odd_divided_difference` sums its series
+#: (terms no larger than the sum, so no digits lost; :data:`_SERIES_TERMS` reach 1e-19 of
+#: it); above it the closed form loses at most about ``max(|a|^2, |b|^2) / |a^2 + b^2|`` ulp
+_SERIES_WAVENUMBER2 = 4.0
+
+#: terms of that series: ``4^14 / 31!`` is 3e-26
+_SERIES_TERMS = 14
+
+
+def _sinc(z: ArrayLike) -> NDArray[np.complex128]:
+    """``sin(z) / z`` of complex `z` (1 at 0)."""
+    z = np.asarray(z, dtype=complex)
+    small = np.abs(z) ** 2 < _SERIES_Z2
+    safe = np.where(small, 1.0, z)
+    return np.asarray(np.where(small, 1.0 - z * z / 6.0, np.sin(safe) / safe), dtype=complex)
+
+
+def _odd_divided_difference(
+    a: NDArray[np.complex128],
+    b: NDArray[np.complex128],
+    r: NDArray[np.complex128],
+    q: NDArray[np.complex128],
+    g: NDArray[np.complex128],
+    x: float,
+) -> NDArray[np.complex128]:
+    """``D1 = (sinh(bx)/b - sin(ax)/a) / (a^2 + b^2)``, ``(n_freq,)``.
+
+    ``-x^3`` times the divided difference of ``sinc(sqrt z)`` at ``z = a^2 x^2`` and
+    ``-b^2 x^2``. Where both are small it is the series
+    ``x^3 sum_k (-1)^k h_k / (2k + 3)!`` with ``h_k`` the complete symmetric polynomials
+    of the two points, ``h_k = s h_(k-1) - p h_(k-2)``, ``s = q x^2 = (a^2 - b^2) x^2`` and
+    ``p = -g x^4 = -a^2 b^2 x^4`` (``q = rho + eps beta4`` and ``g = beta4 (1 - rho eps)``
+    given without cancellation); elsewhere the closed form, with ``sinh(bx)/b = x sinc(ibx)``
+    and ``r = a^2 + b^2`` formed without cancellation.
+    """
+    x2 = x * x
+    series = np.maximum(np.abs(a), np.abs(b)) ** 2 * x2 <= _SERIES_WAVENUMBER2
+    out = np.empty(a.shape, dtype=complex)
+    if np.any(series):
+        s, p = q[series] * x2, -g[series] * x2 * x2
+        h_prev, h = np.zeros_like(s), np.ones_like(s)
+        total = np.zeros_like(s)
+        for k in range(_SERIES_TERMS):
+            total += (-1) ** k * h / math.factorial(2 * k + 3)
+            h_prev, h = h, s * h - p * h_prev
+        out[series] = total * x**3
+    closed = ~series
+    if np.any(closed):
+        a_c, b_c = a[closed], b[closed]
+        out[closed] = x * (_sinc(1j * b_c * x) - _sinc(a_c * x)) / r[closed]
+    return out
