@@ -170,7 +170,7 @@ def timoshenko_transfer(
 
     ``exp(A x) = cos(ax) I + sin(ax)/a A + D0 N + D1 A N``,
 
-    ``D0 = (cosh bx - cos ax)/(a^2 + b^2) = x^2/2 sinc((a + ib)x/2) sinc((a - ib)x/2)``
+    ``D0 = (cosh bx - cos ax)/(a^2 + b^2) = 2 sin((a + ib)x/2) sin((a - ib)x/2)/(a^2 + b^2)``
     and ``D1 = (sinh(bx)/b - sin(ax)/a)/(a^2 + b^2)`` (:func:`_odd_divided_difference`).
     Every term is even in ``a`` and in ``b`` (no branch is chosen) and holds below, at
     and above the cut-off (``b = 0``); docs/design/0002-track-solver.md.
@@ -202,9 +202,10 @@ def timoshenko_transfer(
     x = float(length)
     a, b = np.sqrt(a2), np.sqrt(b2)
     cos_a = np.cos(a * x)
-    sin_a = x * _sinc(a * x)  # sin(ax) / a
-    d0 = 0.5 * x * x * _sinc(0.5 * x * (a + 1j * b)) * _sinc(0.5 * x * (a - 1j * b))
-    d1 = _odd_divided_difference(a, b, r, rho + eps * b4, b4 * (1.0 - rho_eps_), x)
+    sin_a, sinh_b = _over(np.sin(a * x), a, x), _over(np.sinh(b * x), b, x)
+    d0 = 2.0 * np.sin(0.5 * x * (a + 1j * b)) * np.sin(0.5 * x * (a - 1j * b)) / r
+    q, g = rho + eps * b4, b4 * (1.0 - rho_eps_)
+    d1 = _odd_divided_difference(sin_a, sinh_b, a, b, r, q, g, x)
     diag_r, diag_e = cos_a + d0 * rho_b2, cos_a + d0 * eb_b2
     d0_b4, d1_b4 = d0 * b4, d1 * b4
     # 1 - eps (rho + b^2) = (1 - rho eps)(rho + b^2) / a^2 (vanishes at the cut-off)
@@ -222,10 +223,6 @@ def timoshenko_transfer(
     return out
 
 
-#: below this ``|z|^2`` the sinc and sinhc of ``z`` come from their series (error
-#: ``|z|^4 / 120``, below 1e-17)
-_SERIES_Z2 = 1e-8
-
 #: largest ``max(|a|^2, |b|^2) x^2`` where :func:`_odd_divided_difference` sums its series
 #: (terms no larger than the sum, so no digits lost; :data:`_SERIES_TERMS` reach 1e-19 of
 #: it); above it the closed form loses at most about ``max(|a|^2, |b|^2) / |a^2 + b^2|`` ulp
@@ -235,15 +232,21 @@ _SERIES_WAVENUMBER2 = 4.0
 _SERIES_TERMS = 14
 
 
-def _sinc(z: ArrayLike) -> NDArray[np.complex128]:
-    """``sin(z) / z`` of complex `z` (1 at 0)."""
-    z = np.asarray(z, dtype=complex)
-    small = np.abs(z) ** 2 < _SERIES_Z2
-    safe = np.where(small, 1.0, z)
-    return np.asarray(np.where(small, 1.0 - z * z / 6.0, np.sin(safe) / safe), dtype=complex)
+def _over(
+    value: NDArray[np.complex128], k: NDArray[np.complex128], x: float
+) -> NDArray[np.complex128]:
+    """``sin(kx) / k`` or ``sinh(kx) / k`` from its numerator `value`: ``x`` where ``k = 0``.
+
+    No digits are lost for small ``k`` (numerator and ``k`` each hold theirs); only ``k = 0``
+    exactly (``b`` at the cut-off) is taken apart.
+    """
+    zero = k == 0
+    return np.asarray(np.where(zero, x, value / np.where(zero, 1.0, k)), dtype=complex)
 
 
 def _odd_divided_difference(
+    sin_a: NDArray[np.complex128],
+    sinh_b: NDArray[np.complex128],
     a: NDArray[np.complex128],
     b: NDArray[np.complex128],
     r: NDArray[np.complex128],
@@ -258,8 +261,8 @@ def _odd_divided_difference(
     ``x^3 sum_k (-1)^k h_k / (2k + 3)!`` with ``h_k`` the complete symmetric polynomials
     of the two points, ``h_k = s h_(k-1) - p h_(k-2)``, ``s = q x^2 = (a^2 - b^2) x^2`` and
     ``p = -g x^4 = -a^2 b^2 x^4`` (``q = rho + eps beta4`` and ``g = beta4 (1 - rho eps)``
-    given without cancellation); elsewhere the closed form, with ``sinh(bx)/b = x sinc(ibx)``
-    and ``r = a^2 + b^2`` formed without cancellation.
+    given without cancellation); elsewhere the closed form from ``sin_a = sin(ax)/a``,
+    ``sinh_b = sinh(bx)/b`` and ``r = a^2 + b^2`` (formed without cancellation).
     """
     x2 = x * x
     series = np.maximum(np.abs(a), np.abs(b)) ** 2 * x2 <= _SERIES_WAVENUMBER2
@@ -274,6 +277,5 @@ def _odd_divided_difference(
         out[series] = total * x**3
     closed = ~series
     if np.any(closed):
-        a_c, b_c = a[closed], b[closed]
-        out[closed] = x * (_sinc(1j * b_c * x) - _sinc(a_c * x)) / r[closed]
+        out[closed] = (sinh_b[closed] - sin_a[closed]) / r[closed]
     return out
