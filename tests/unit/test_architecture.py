@@ -63,7 +63,6 @@ LAYERS = {
 LAZY_LIBRARIES = {
     "matplotlib": "figures: only code that draws",
     "scipy.optimize": "pad and WLF fitting only (railvib.pads.fit)",
-    "scipy.linalg": "the Timoshenko span's matrix exponential only (railvib.track.beam)",
     "scipy.sparse.linalg": "the finite-track reference model only (railvib.validation)",
     "distributed": "a sweep on a Dask cluster only (railvib.sweep.runner)",
     "dask.array": "lazy placeholders of a sweep's Zarr layout, only when assembling one",

@@ -25,6 +25,8 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.track.timoshenko import wavenumbers
+
 __all__ = ["dynamic_stiffness", "field_transfer", "krylov_series", "timoshenko_transfer"]
 
 
@@ -147,9 +149,13 @@ def dynamic_stiffness(beta4: ArrayLike, length: float) -> NDArray[np.complex128]
 
 
 def timoshenko_transfer(
-    beta4: ArrayLike, shear_flexibility: complex, rotary: ArrayLike, length: float
+    beta4: ArrayLike,
+    shear_flexibility: complex,
+    rotary: ArrayLike,
+    length: float,
+    rho_eps: ArrayLike | None = None,
 ) -> NDArray[np.complex128]:
-    """Field transfer matrix of a Timoshenko span, ``(n_freq, 4, 4)``.
+    """Field transfer matrix of a Timoshenko span, ``(n_freq, 4, 4)``, in closed form.
 
     State ``y = (w, psi, psi', v)`` with ``psi`` the cross-section rotation and
     ``v = -S / EI`` (``S`` the shear force; ``v = w'''`` in the Euler limit), all
@@ -158,9 +164,16 @@ def timoshenko_transfer(
     ``A = [[0, 1, 0, -eps], [0, 0, 1, 0], [0, -rho, 0, 1], [beta4, 0, 0, 0]]``,
 
     ``eps = EI / (kappa G A L0^2)`` and ``rho = rho_I omega^2 L0^2 / EI``; ``tr A = 0``
-    so ``det exp(A L) = 1``. ``eps = rho = 0`` gives :func:`field_transfer`. The
-    matrix exponential is an entire function of the entries (no poles); it is
-    evaluated by :func:`scipy.linalg.expm`, stacked over frequency.
+    so ``det exp(A L) = 1``. ``eps = rho = 0`` gives :func:`field_transfer`. ``A^2`` has
+    the eigenvalues ``b^2`` and ``-a^2`` (:func:`railvib.track.timoshenko.wavenumbers`),
+    so with ``N = A^2 + a^2 I`` (entries ``rho + b^2``, ``b^2 + eps beta4``, 1, ``beta4``)
+
+    ``exp(A x) = cos(ax) I + sin(ax)/a A + D0 N + D1 A N``,
+
+    ``D0 = (cosh bx - cos ax)/(a^2 + b^2) = 2 sin((a + ib)x/2) sin((a - ib)x/2)/(a^2 + b^2)``
+    and ``D1 = (sinh(bx)/b - sin(ax)/a)/(a^2 + b^2)`` (:func:`_odd_divided_difference`).
+    Every term is even in ``a`` and in ``b`` (no branch is chosen) and holds below, at
+    and above the cut-off (``b = 0``); docs/design/0002-track-solver.md.
 
     Parameters
     ----------
@@ -172,20 +185,103 @@ def timoshenko_transfer(
         ``rho = rho_I omega^2 L0^2 / EI*`` per frequency (dimensionless), shape ``(n_freq,)``.
     length : float
         Dimensionless span length (signed).
+    rho_eps : array_like of complex, optional
+        ``rho eps = rho_I omega^2 / kappa G A*`` formed directly (dimensionless, 1 at the
+        cut-off), ``(n_freq,)``; by default ``rotary * shear_flexibility``.
 
     Returns
     -------
     numpy.ndarray
         Complex array ``(n_freq, 4, 4)``.
     """
-    from scipy.linalg import expm
-
     b4 = np.atleast_1d(np.asarray(beta4, dtype=complex))
-    a = np.zeros(b4.shape + (4, 4), dtype=complex)
-    a[..., 0, 1] = 1.0
-    a[..., 0, 3] = -shear_flexibility
-    a[..., 1, 2] = 1.0
-    a[..., 2, 1] = -np.asarray(rotary, dtype=complex)
-    a[..., 2, 3] = 1.0
-    a[..., 3, 0] = b4
-    return np.asarray(expm(a * length), dtype=np.complex128)
+    rho = np.broadcast_to(np.asarray(rotary, dtype=complex), b4.shape)
+    eps = complex(shear_flexibility)
+    rho_eps_ = rho * eps if rho_eps is None else np.asarray(rho_eps, dtype=complex)
+    a2, b2, rho_b2, eb_b2, r = wavenumbers(b4, eps, rho, rho_eps_)
+    x = float(length)
+    a, b = np.sqrt(a2), np.sqrt(b2)
+    cos_a = np.cos(a * x)
+    sin_a, sinh_b = _over(np.sin(a * x), a, x), _over(np.sinh(b * x), b, x)
+    d0 = 2.0 * np.sin(0.5 * x * (a + 1j * b)) * np.sin(0.5 * x * (a - 1j * b)) / r
+    q, g = rho + eps * b4, b4 * (1.0 - rho_eps_)
+    d1 = _odd_divided_difference(sin_a, sinh_b, a, b, r, q, g, x)
+    diag_r, diag_e = cos_a + d0 * rho_b2, cos_a + d0 * eb_b2
+    d0_b4, d1_b4 = d0 * b4, d1 * b4
+    # 1 - eps (rho + b^2) = (1 - rho eps)(rho + b^2) / a^2 (vanishes at the cut-off)
+    shear_03 = d1 * (1.0 - rho_eps_) * rho_b2 / a2 - eps * sin_a
+    rows = (
+        (diag_r, sin_a + d1 * b2, d0, shear_03),
+        (d1_b4, diag_e, sin_a + d1 * eb_b2, d0),
+        (d0_b4, d1 * eb_b2 * b2 - rho * sin_a, diag_e, sin_a + d1 * b2),
+        (b4 * sin_a + d1_b4 * rho_b2, d0_b4, d1_b4, diag_r),
+    )
+    out = np.empty(b4.shape + (4, 4), dtype=complex)
+    for i, row in enumerate(rows):
+        for j, entry in enumerate(row):
+            out[..., i, j] = entry
+    return out
+
+
+#: largest ``max(|a|^2, |b|^2) x^2`` where :func:`_odd_divided_difference` sums its series
+#: (no term above 1/6 and the sum above 0.1, so a few ulp at most); above it the closed
+#: form loses about ``max(|a|^2, |b|^2) / |a^2 + b^2|`` ulp (at most 1.3 for the rails of
+#: tests/unit/track/test_timoshenko_span.py up to 5 kHz)
+_SERIES_WAVENUMBER2 = 4.0
+
+#: terms of that series: the first left out is below ``13 4^12 / 27! = 2e-20``, and the sum
+#: above 0.1
+_SERIES_TERMS = 12
+
+
+def _over(
+    value: NDArray[np.complex128], k: NDArray[np.complex128], x: float
+) -> NDArray[np.complex128]:
+    """``sin(kx) / k`` or ``sinh(kx) / k`` from its numerator `value`: ``x`` where ``k = 0``.
+
+    No digits are lost for small ``k`` (numerator and ``k`` each hold theirs); only ``k = 0``
+    exactly (``b`` at the cut-off) is taken apart.
+    """
+    zero = k == 0
+    return np.asarray(np.where(zero, x, value / np.where(zero, 1.0, k)), dtype=complex)
+
+
+def _odd_divided_difference(
+    sin_a: NDArray[np.complex128],
+    sinh_b: NDArray[np.complex128],
+    a: NDArray[np.complex128],
+    b: NDArray[np.complex128],
+    r: NDArray[np.complex128],
+    q: NDArray[np.complex128],
+    g: NDArray[np.complex128],
+    x: float,
+) -> NDArray[np.complex128]:
+    """``D1 = (sinh(bx)/b - sin(ax)/a) / (a^2 + b^2)``, ``(n_freq,)``.
+
+    ``-x^3`` times the divided difference of ``sinc(sqrt z)`` at ``z = a^2 x^2`` and
+    ``-b^2 x^2``. Where both are small it is the series
+    ``x^3 sum_k (-1)^k h_k / (2k + 3)!`` with ``h_k`` the complete symmetric polynomials
+    of the two points, ``h_k = s h_(k-1) - p h_(k-2)``, ``s = q x^2 = (a^2 - b^2) x^2`` and
+    ``p = -g x^4 = -a^2 b^2 x^4`` (``q = rho + eps beta4`` and ``g = beta4 (1 - rho eps)``
+    given without cancellation); elsewhere the closed form from ``sin_a = sin(ax)/a``,
+    ``sinh_b = sinh(bx)/b`` and ``r = a^2 + b^2`` (formed without cancellation).
+    """
+    x2 = x * x
+    series = np.maximum(np.abs(a), np.abs(b)) ** 2 * x2 <= _SERIES_WAVENUMBER2
+    out = np.empty(a.shape, dtype=complex)
+    if np.any(series):
+        whole = bool(np.all(series))
+        s = (q if whole else q[series]) * x2
+        p = (g if whole else g[series]) * (-x2 * x2)
+        # Clenshaw's recurrence for sum c_k h_k: b_k = c_k + s b_(k+1) - p b_(k+2), sum b_0
+        b_next, b_next2 = np.zeros_like(s), np.zeros_like(s)
+        for k in range(_SERIES_TERMS - 1, -1, -1):
+            b_k = s * b_next
+            b_k -= p * b_next2
+            b_k += (-1) ** k / math.factorial(2 * k + 3)
+            b_next, b_next2 = b_k, b_next
+        out[series] = b_next * x**3
+    closed = ~series
+    if np.any(closed):
+        out[closed] = (sinh_b[closed] - sin_a[closed]) / r[closed]
+    return out

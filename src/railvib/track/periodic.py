@@ -361,7 +361,8 @@ class PeriodicTrack(TrackModel):
         f = _as_freq(f)
         if self.rail.shear_stiffness is None:
             return field_transfer(self._beta4(f), length)
-        return timoshenko_transfer(*self._timoshenko_terms(f)[:3], length)
+        beta4, eps, rho, rho_eps = self._timoshenko_terms(f)
+        return timoshenko_transfer(beta4, eps, rho, length, rho_eps)
 
     def _timoshenko_terms(
         self, f: NDArray[np.float64]
@@ -453,7 +454,7 @@ class PeriodicTrack(TrackModel):
         ``|a^2 + b^2| <`` :data:`SMALL_WAVENUMBERS`: there the divided differences of the
         closed form would cancel, and the entries of the bay (no larger than ``cosh 2``)
         and its half-span pencil are used, as for the Euler bay; the half-span matrices
-        (a matrix exponential) are formed only there.
+        (closed form, :func:`~railvib.track.beam.timoshenko_transfer`) are formed only there.
         """
         span = span_terms(*self._timoshenko_terms(f))
         mu = np.empty((f.size, 2), dtype=np.complex128)

@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Span", "bay_characteristic", "bay_waves", "span_terms"]
+__all__ = ["Span", "bay_characteristic", "bay_waves", "span_terms", "wavenumbers"]
 
 #: below this ``|b|^2``, ``sinh(b) / b`` is taken from its series (error ``|b|^6 / 5040``)
 _SERIES_B2 = 1e-8
@@ -81,6 +81,52 @@ def _complex(values: ArrayLike) -> NDArray[np.complex128]:
     return np.asarray(values, dtype=np.complex128)
 
 
+def wavenumbers(
+    beta4: NDArray[np.complex128],
+    eps: complex,
+    rho: NDArray[np.complex128],
+    rho_eps: NDArray[np.complex128],
+) -> tuple[NDArray[np.complex128], ...]:
+    """The span's squared wavenumbers ``a^2``, ``b^2`` and the terms formed from them.
+
+    Each is formed without cancellation: ``a^2 + b^2 = sqrt((rho - eps beta4)^2 + 4 beta4)``,
+    ``b^2`` as the product of the roots over the larger one, and of ``rho + b^2`` and
+    ``b^2 + eps beta4`` (product ``beta4``) the larger directly, the smaller as ``beta4``
+    over it.
+
+    Parameters
+    ----------
+    beta4 : numpy.ndarray
+        ``m omega^2 d^4 / EI*`` (dimensionless), ``(n_freq,)``.
+    eps : complex
+        ``EI* / (kappa G A* d^2)`` (dimensionless).
+    rho : numpy.ndarray
+        ``rho_I omega^2 d^2 / EI*`` (dimensionless), ``(n_freq,)``.
+    rho_eps : numpy.ndarray
+        ``rho eps`` (dimensionless, 1 at the cut-off), ``(n_freq,)``.
+
+    Returns
+    -------
+    a2, b2, rho_b2, eb_b2, r : numpy.ndarray
+        ``a^2``, ``b^2``, ``rho + b^2``, ``b^2 + eps beta4`` and ``a^2 + b^2``, each
+        ``(n_freq,)`` (dimensionless).
+    """
+    eb = eps * beta4
+    q = rho + eb
+    r = np.sqrt((rho - eb) ** 2 + 4.0 * beta4)
+    r = np.where(np.real(np.conj(q) * r) >= 0, r, -r)  # so that q + r does not cancel
+    a2 = 0.5 * (q + r)
+    b2 = 2.0 * beta4 * (1.0 - rho_eps) / (q + r)  # the small root as product / large
+    # rho + b^2 = (r + u) / 2 and b^2 + eps beta4 = (r - u) / 2, u = rho - eps beta4, their
+    # product beta4: the larger formed directly, the smaller as beta4 over it
+    u = rho - eb
+    plus_big = np.abs(r + u) >= np.abs(r - u)
+    big = 0.5 * np.where(plus_big, r + u, r - u)
+    other = beta4 / np.where(big == 0, 1.0, big)
+    rho_b2, eb_b2 = np.where(plus_big, big, other), np.where(plus_big, other, big)
+    return tuple(_complex(t) for t in (a2, b2, rho_b2, eb_b2, r))
+
+
 def span_terms(
     beta4: NDArray[np.complex128],
     eps: complex,
@@ -106,19 +152,8 @@ def span_terms(
     Span
     """
     eb = eps * beta4
-    q = rho + eb
-    r = np.sqrt((rho - eb) ** 2 + 4.0 * beta4)
-    r = np.where(np.real(np.conj(q) * r) >= 0, r, -r)  # so that q + r does not cancel
-    a2 = 0.5 * (q + r)
-    b2 = 2.0 * beta4 * (1.0 - rho_eps) / (q + r)  # the small root as product / large
+    a2, b2, rho_b2, eb_b2, r = wavenumbers(beta4, eps, rho, rho_eps)
     a, b = np.sqrt(a2), np.sqrt(b2)
-    # rho + b^2 = (r + u) / 2 and b^2 + eps beta4 = (r - u) / 2, u = rho - eps beta4, their
-    # product beta4: the larger formed directly, the smaller as beta4 over it
-    u = rho - eb
-    plus_big = np.abs(r + u) >= np.abs(r - u)
-    big = 0.5 * np.where(plus_big, r + u, r - u)
-    other = beta4 / np.where(big == 0, 1.0, big)
-    rho_b2, eb_b2 = np.where(plus_big, big, other), np.where(plus_big, other, big)
     sinc = np.sin(a) / a
     series = np.abs(b2) < _SERIES_B2
     sinhc = np.where(
