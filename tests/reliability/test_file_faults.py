@@ -182,8 +182,10 @@ def test_file_size_limit_after_writing_started_leaves_nothing(tmp_path, capsys, 
     ref = tmp_path / "ref"
     run_to_folder(case, ref)
     sizes = {p.name: p.stat().st_size for p in ref.iterdir()}
-    limit = sizes["results.nc"] + 1  # results.nc and the tables fit; a larger figure not
-    assert max(sizes.values()) > limit, sizes
+    # results.nc, written first, is cut half-way through its write: a partial temporary
+    # exists when the error comes (a figure larger than results.nc, which this test used
+    # to cut, no longer exists since the criteria joined the dataset)
+    limit = sizes["results.nc"] // 2
     out = tmp_path / "out"
     with file_size_limit(limit):
         code, err = _run(capsys, "run", case, "-o", out)
