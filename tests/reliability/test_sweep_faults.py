@@ -454,6 +454,9 @@ LONG = {
     "case": {**BASE_CASE, "frequency": {"spacing": "log", "f_min": 0.5, "f_max": 1000.0, "n": 400}},
     "axes": [{"field": "speed_kmh", "start": 40.0, "stop": 200.0, "num": 120}],
 }
+#: LONG with 4 times the cases: it runs far beyond the latest Ctrl-C below (3 s) on any
+#: machine (LONG takes about 6 s on 2 cores since sweeps are stacked, too close)
+LONGER = {**LONG, "axes": [{"field": "speed_kmh", "start": 40.0, "stop": 200.0, "num": 480}]}
 
 
 def _command(sweep_file, out):
@@ -513,7 +516,7 @@ linux_only = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="re
 @pytest.mark.parametrize("after_s", [0.1, 0.5, 1.0, 1.5, 2.0, 3.0])
 def test_ctrl_c_at_any_moment_is_one_line_exit_130(after_s, tmp_path):
     sweep_file = tmp_path / "long.toml"
-    sweep_file.write_text(tomli_w.dumps(LONG))
+    sweep_file.write_text(tomli_w.dumps(LONGER))
     out = tmp_path / "out"
     proc = _start(sweep_file, out)
     time.sleep(after_s)
