@@ -75,3 +75,20 @@ def test_thompson_preset_runs(tmp_path, monkeypatch):
     (tmp_path / "case.toml").write_text(BASE, encoding="utf-8")
     assert main(["run", "case.toml", "-o", "out", "--no-plots"]) == 0
     assert (tmp_path / "out" / "results.nc").is_file()
+
+
+def test_validate_refuses_a_ballasted_track_in_one_line_before_any_work(
+    tmp_path, monkeypatch, capsys
+):
+    # was: the reference models were built for a rigid base and the comparison printed
+    # an FE error of 1.3e+02 (relative) and FAILED for a correct result; its Monte Carlo has
+    # no sleeper DOFs yet
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "case.toml").write_text(BASE, encoding="utf-8")
+    before = set(tmp_path.rglob("*"))
+    assert main(["validate", "case.toml", "--quick", "-o", "out"]) == 2
+    captured = capsys.readouterr()
+    lines = [s for s in captured.err.splitlines() if s.strip() and not s.startswith("warning:")]
+    assert len(lines) == 1, captured.err
+    assert lines[0].startswith("error: track.model = 'ballasted': rigid_base for railvib validate")
+    assert set(tmp_path.rglob("*")) == before

@@ -28,7 +28,8 @@ from railvib.coupling import CoupledSystem  # the system description only, not i
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
-from railvib.track.periodic import Rail  # the parameter record only, not the solver
+from railvib.track.ballasted import BallastedTrack  # its layers only, not its solver
+from railvib.track.periodic import PeriodicTrack, Rail  # the parameter records only, not the solver
 from railvib.validation._legacy import SYSTEM_FROM_BUNDLE, bundle_form, warn_deprecated
 from railvib.validation.finite_track import FiniteTrack
 from railvib.vehicle.assembly import Vehicle
@@ -84,8 +85,9 @@ class FiniteCoupledSystem:
         """The finite-track counterpart of the symplectic path's system description.
 
         Only the parameters of `system` are read (vehicle; rail, pad, sleeper spacing
-        and pad temperature of ``system.track``; contact stiffness, leading wheel
-        position and speed); nothing of the periodic-track solver is called.
+        and pad temperature of ``system.track``, and a ballasted track's sleeper, ballast,
+        ballast mass and subgrade, which become explicit DOFs; contact stiffness, leading
+        wheel position and speed); nothing of the periodic-track solver is called.
 
         Parameters
         ----------
@@ -119,6 +121,7 @@ class FiniteCoupledSystem:
             absorber_spans=absorber_spans,
             absorber_damping=absorber_damping,
             pad_temperature=track.pad_temperature,
+            **_layers(track),
         )
 
     @classmethod
@@ -279,8 +282,13 @@ def _finite_system(
     absorber_spans: int = 0,
     absorber_damping: float = 0.0,
     pad_temperature: float | None = None,
+    **layers: Any,
 ) -> FiniteCoupledSystem:
-    """The finite track around the wheels with the vehicle coupled to it (no warning)."""
+    """The finite track around the wheels with the vehicle coupled to it (no warning).
+
+    `layers` are a ballasted track's (``ballast``, ``sleeper_mass``, ``subgrade``,
+    ``ballast_mass``: :class:`~railvib.validation.FiniteTrack`); none for a rigid base.
+    """
     x = leading_wheel_position - vehicle.wheel_offsets
     track = FiniteTrack.around(
         x,
@@ -292,8 +300,21 @@ def _finite_system(
         absorber_spans=absorber_spans,
         absorber_damping=absorber_damping,
         pad_temperature=pad_temperature,
+        **layers,
     )
     return FiniteCoupledSystem(vehicle, track, contact_stiffness, leading_wheel_position, speed)
+
+
+def _layers(track: PeriodicTrack) -> dict[str, Any]:
+    """The layers under the pads of a ballasted track, as :class:`FiniteTrack` takes them."""
+    if not isinstance(track, BallastedTrack):
+        return {}
+    return {
+        "ballast": track.ballast,
+        "sleeper_mass": track.sleeper_mass,
+        "subgrade": track.subgrade,
+        "ballast_mass": track.ballast_mass or 0.0,
+    }
 
 
 def _finite_track_frf_bundle(*bundle: Any, **options: Any) -> FRF:

@@ -16,6 +16,7 @@ from railvib.pads.base import PadModel
 from railvib.pads.scaled import ScaledPad
 from railvib.pads.simple import SpringDamper
 from railvib.pads.tts import TemperatureShifted
+from railvib.track.ballasted import BallastedTrack
 from railvib.track.base import TRACKS
 from railvib.track.periodic import Rail
 from railvib.track.slab import SlabTrack
@@ -130,8 +131,8 @@ def check_scope(system: CoupledSystem) -> None:
     CaseError
         ``track.rail.shear_stiffness`` for a Timoshenko rail, ``track.rail.loss_factor``
         for a rail loss factor, ``track.pad.model`` (the user's model name) for a pad
-        that is not viscous, ``track.model`` for a slab track (the time-domain model
-        has no slab DOFs).
+        that is not viscous, ``track.model`` for a slab or ballasted track (the
+        time-domain model has no slab or sleeper DOFs).
     """
     if isinstance(system.track, SlabTrack):
         raise CaseError(
@@ -140,6 +141,15 @@ def check_scope(system: CoupledSystem) -> None:
             "rigid_base for railvib validate: its finite-track and time-domain reference "
             "models have no slab DOFs (the slab tracks are validated against "
             "railvib.validation.finite_slab.FiniteSlabTrack in the test suite)",
+        )
+    if isinstance(system.track, BallastedTrack):
+        raise CaseError(
+            "track.model",
+            "ballasted",
+            "rigid_base for railvib validate: its time-domain Monte Carlo has no sleeper "
+            "DOFs yet (the ballasted track's coupled PSDs are checked against the finite "
+            "track with explicit sleepers, railvib.validation.finite_track_frf, in the test "
+            "suite)",
         )
     check_rail(system.track.rail, time_domain=True)
     check_pad(system.track.pad)
