@@ -63,8 +63,8 @@ def criteria_table(ds: xr.Dataset) -> pd.DataFrame:
                     "standard": "Sperling (1941), filter form",
                 },
             ]
-    for j, wheel in enumerate(ds["wheel"].values):
-        where = f"wheel {int(wheel)}"
+    for j in range(ds.sizes["wheel"]):
+        where = wheel_name(ds["response"].values, j)
         rows.append(
             {
                 "criterion": "contact force RMS",
