@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_value
-from railvib.track.base import TRACKS, SupportResponse
+from railvib.track.base import TRACKS, SupportResponse, passive_layer_stiffness
 from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail
 
 __all__ = ["BALLASTED_PARAMETERS", "BallastedTrack", "ballasted_track", "series_support"]
@@ -182,28 +182,12 @@ class BallastedTrack(PeriodicTrack):
             A layer has ``Im K < 0`` (it would put power into the track) at a frequency of
             the grid, named ``track.<layer>``.
         """
-        f = np.asarray(f, dtype=float)
         models: dict[str, PadModel | None] = {
             "pad": self.pad,
             "ballast": self.ballast,
             "subgrade": self.subgrade,
         }
-        out: dict[str, NDArray[np.complex128]] = {}
-        for name, model in models.items():
-            if model is None:
-                continue
-            k = np.asarray(model.stiffness(f, self.pad_temperature), dtype=np.complex128)
-            k = np.broadcast_to(k, f.shape).astype(np.complex128)
-            bad = ~(np.isfinite(k) & (k.imag >= 0.0))
-            if np.any(bad):
-                first = float(f[bad][0])
-                raise CaseError(
-                    f"track.{name}",
-                    f"K = {complex(k[bad][0]):.4g} N/m at {first:.6g} Hz",
-                    "a passive, finite model: Im K >= 0 at every frequency of the grid",
-                )
-            out[name] = k
-        return out
+        return passive_layer_stiffness(models, f, self.pad_temperature, unit=" N/m")
 
     def support_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Rail seat support seen by the rail, ``K_p Z_b / (K_p + Z_b)``, N/m, ``(n_freq,)``.

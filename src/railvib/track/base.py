@@ -13,9 +13,69 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.errors import CaseError
+from railvib.pads.base import PadModel
 from railvib.registry import Registry
 
-__all__ = ["DEFAULT_TRACK_MODEL", "TRACKS", "SupportResponse", "TrackModel"]
+__all__ = [
+    "DEFAULT_TRACK_MODEL",
+    "TRACKS",
+    "SupportResponse",
+    "TrackModel",
+    "passive_layer_stiffness",
+]
+
+
+def passive_layer_stiffness(
+    models: dict[str, PadModel | None],
+    f: ArrayLike,
+    temperature: float | None,
+    *,
+    unit: str = "",
+    tolerance: float = 0.0,
+) -> dict[str, NDArray[np.complex128]]:
+    """The complex stiffness of each layer model given, checked finite and passive.
+
+    Parameters
+    ----------
+    models : dict of str to PadModel or None
+        The layers by name (``"pad"``, ``"ballast"``, ...); None: the layer is absent.
+    f : array_like
+        Frequencies in Hz.
+    temperature : float, optional
+        Temperature passed to the models, degC.
+    unit : str
+        Unit written after a refused value (e.g. ``" N/m"``).
+    tolerance : float
+        ``Im K`` down to ``-tolerance |K|`` counts as passive (round-off; dimensionless).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The present layers' ``K*(f)``, each ``(n_freq,)``, in the models' units.
+
+    Raises
+    ------
+    CaseError
+        A layer has ``Im K < 0`` (it would put power into the track) or is not finite at a
+        frequency of the grid, named ``track.<layer>``.
+    """
+    f = np.asarray(f, dtype=float)
+    out: dict[str, NDArray[np.complex128]] = {}
+    for name, model in models.items():
+        if model is None:
+            continue
+        k = np.asarray(model.stiffness(f, temperature), dtype=np.complex128)
+        k = np.broadcast_to(k, f.shape).astype(np.complex128)
+        bad = ~(np.isfinite(k) & (k.imag >= -tolerance * np.abs(k)))
+        if np.any(bad):
+            raise CaseError(
+                f"track.{name}",
+                f"K = {complex(k[bad][0]):.4g}{unit} at {float(f[bad][0]):.6g} Hz",
+                "a passive, finite model: Im K >= 0 at every frequency of the grid",
+            )
+        out[name] = k
+    return out
 
 
 @dataclass(frozen=True, eq=False)

@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError, NonFiniteResult
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_value
-from railvib.track.base import TRACKS, SupportResponse
+from railvib.track.base import TRACKS, SupportResponse, passive_layer_stiffness
 from railvib.track.cells import Cell, cell_receptance, cell_waves, span_stiffness
 from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail, TrackWaves
 
@@ -266,23 +266,10 @@ class SlabTrack(PeriodicTrack):
             A model has ``Im K < 0`` or is not finite at a frequency of the grid, named
             ``track.<layer>``.
         """
-        f = np.asarray(f, dtype=float)
-        out: dict[str, NDArray[np.complex128]] = {}
         models = {"pad": self.pad, "foundation": self.foundation, "bearing": self.bearing}
-        for name, model in models.items():
-            if model is None:
-                continue
-            k = np.asarray(model.stiffness(f, self.pad_temperature), dtype=np.complex128)
-            k = np.broadcast_to(k, f.shape).astype(np.complex128)
-            bad = ~(np.isfinite(k) & (k.imag >= -16 * np.finfo(float).eps * np.abs(k)))
-            if np.any(bad):
-                raise CaseError(
-                    f"track.{name}",
-                    f"K = {complex(k[bad][0]):.4g} at {float(f[bad][0]):.6g} Hz",
-                    "a passive, finite model: Im K >= 0 at every frequency of the grid",
-                )
-            out[name] = k
-        return out
+        # Im K down to -16 eps |K| is round-off of a passive model, not a source of power
+        tolerance = 16 * np.finfo(float).eps
+        return passive_layer_stiffness(models, f, self.pad_temperature, tolerance=tolerance)
 
     def check_frequencies(self, f: ArrayLike) -> None:
         """Refuse a grid the spans cannot be solved at, or where a support is not passive.
