@@ -84,7 +84,9 @@ _FIXED_PREFIXES = ("frequency", "output", "title")
 #: keys of a case file that are not case fields: merged before the axes apply
 _NOT_FIELDS = ("preset",)
 #: the case fields an axis can vary (the top of their dotted names)
-_VARIABLE_FIELDS = "speed_kmh, rail_model, vehicle.*, track.*, contact.* and irregularity.*"
+_VARIABLE_FIELDS = (
+    "speed_kmh, rail_model, vehicle.*, train.*, track.*, contact.* and irregularity.*"
+)
 
 #: the case fields that set the number of cars of a train: an axis over them varies the
 #: response and wheel axes, laid out as the longest train's (:mod:`railvib.sweep.trains`)

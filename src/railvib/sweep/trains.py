@@ -77,7 +77,7 @@ def train_labels(case_dict: Mapping[str, Any]) -> tuple[tuple[str, ...], tuple[s
     """
     vehicle = build_vehicle(case_from_dict(dict(case_dict), warn=False))
     labels = response_labels(vehicle.dofs, len(vehicle.wheels), vehicle.wheel_names)
-    if vehicle.dofs[0].startswith("car1."):
+    if _cars(case_dict) > 1:  # already named per car (railvib.vehicle.make_train)
         return labels, vehicle.wheel_names
     return tuple(map(leading_car_label, labels)), tuple(f"car1.{w}" for w in vehicle.wheel_names)
 
