@@ -334,6 +334,8 @@ def summary_table(ds: xr.Dataset) -> pd.DataFrame:
     unit are headed ``<name> [<unit>]``. The contact check of the case is joined to
     each of its rows: ``contact_force_rms_max [N]`` and
     ``loss_of_contact_probability_max [1]`` (worst wheel) and ``linear_model_valid``.
+    Over trains of several lengths (``train_cars`` in `ds`) each case has the rows of the
+    responses its own train has, and a ``train_cars`` column.
 
     Parameters
     ----------
