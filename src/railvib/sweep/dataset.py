@@ -156,7 +156,7 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
             dims=sweep_dims,
             attrs={"long_name": "number of cars of the case's train", "units": "1"},
         )
-        car = "car of each {}: NaN where it exceeds train_cars (docs/sweeps.md)"
+        car = "car of each {} (its values are NaN where train_cars is smaller; docs/sweeps.md)"
         coords["response_car"] = (
             "response",
             [label_car(r) for r in labels],
