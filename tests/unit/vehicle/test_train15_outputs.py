@@ -13,6 +13,7 @@ from railvib.case import case_from_dict
 from railvib.case.build import build_system
 from railvib.outputs.contact import contact_table
 from railvib.results import load_netcdf
+from railvib.results.report import summary_csv
 from railvib.solve import run, run_to_folder
 
 GRID = {"spacing": "log", "f_min": 1.0, "f_max": 300.0, "n": 30}
@@ -105,3 +106,12 @@ def test_a_stiff_coupler_joins_the_car_body_ends():
     assert np.abs(front - rear).max() < 2.5e-3 * scale
     front, rear = ends(0.0)
     assert np.abs(front - rear).max() > 0.1 * np.abs(front).max()
+
+
+def test_summary_csv_writes_extra_tables_as_comments():
+    table = pd.DataFrame({"rms": [1.5, 2.5]}, index=pd.Index(["a", "b"], name="response"))
+    cars = pd.DataFrame({"worst [N]": [3.5, 4.25]}, index=pd.Index(["car1", "train"], name="car"))
+    text = summary_csv(table, ["case: x"], ["loss of contact: y"], extra=[("Per car", cars)])
+    back = pd.read_csv(io.StringIO(text), comment="#", index_col=0)
+    pd.testing.assert_frame_equal(back, table)  # the comment block leaves the table alone
+    pd.testing.assert_frame_equal(_comment_table(text, "Per car"), cars)
