@@ -409,15 +409,16 @@ def run_to_folder(
         contact = contact_line(ds)
         footer = [contact, *criteria_lines(ds)]
         criteria = criteria_table(ds)
-        extra = [("Contact check per wheel", contact_table(ds))]
         per_car = car_table(table, ds)
-        if per_car is not None:
-            extra.append(("Per car and for the train", per_car))
-        extra.append(("Criteria", criteria))
+        cars = [] if per_car is None else [("Per car and for the train", per_car)]
+        extra = [("Contact check per wheel", contact_table(ds)), *cars, ("Criteria", criteria)]
         files = [
             save_netcdf(ds, stage.path / "results.nc"),
             *(save_csv(ds, stage.path / f"{name}.csv", variable=name) for name in PSD_CSV),
-            write_text(stage.path / "summary.csv", summary_csv(table, header, footer)),
+            write_text(
+                stage.path / "summary.csv",
+                summary_csv(table, header, footer, extra=cars),
+            ),
             write_text(
                 stage.path / "summary.md",
                 summary_markdown(table, header, footer, title=case.title, extra=extra),

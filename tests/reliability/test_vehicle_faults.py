@@ -100,11 +100,17 @@ def test_bad_train_is_one_field_named_line(tmp_path, monkeypatch, capsys, train,
     _run(tmp_path, monkeypatch, capsys, BASE + f"[train]\n{train}\n", field)
 
 
-def test_sweep_over_train_length_is_refused_on_one_line(tmp_path, monkeypatch, capsys):
-    # the cases of a sweep share one response axis: a train length changes it (before the
-    # fix: IndexError traceback from the batched solve)
-    (tmp_path / "base.toml").write_text(BASE, encoding="utf-8")
-    sweep = 'base = "base.toml"\n[[axes]]\nfield = "train.cars"\nvalues = [1, 2]\n'
+def test_sweep_over_vehicle_topology_is_refused_on_one_line(tmp_path, monkeypatch, capsys):
+    # the cases of a sweep share one response axis: another topology (a car of three
+    # wheelsets against one of two) changes it (before the check: IndexError traceback from
+    # the batched solve); a train length is swept with train.cars (tests/unit/vehicle/
+    # test_train15_sweep.py)
+    (tmp_path / "base.toml").write_text(BASE + '[vehicle]\nfile = "car.toml"\n', "utf-8")
+    (tmp_path / "car.toml").write_text(CAR.format(mass=2e4, extra="", wheel2="ws2"), "utf-8")
+    sweep = (
+        'base = "base.toml"\n[[axes]]\nfield = "vehicle"\nlabels = ["two", "three"]\n'
+        f"values = [{_inline_car(2)}, {_inline_car(3)}]\n"
+    )
     monkeypatch.chdir(tmp_path)
     (tmp_path / "sweep.toml").write_text(sweep, encoding="utf-8")
     before = set(tmp_path.rglob("*"))
@@ -112,6 +118,21 @@ def test_sweep_over_train_length_is_refused_on_one_line(tmp_path, monkeypatch, c
     captured = capsys.readouterr()
     lines = [s for s in captured.err.splitlines() if s.strip() and not s.startswith("warning:")]
     assert len(lines) == 1, captured.err
-    assert "axes.train.cars" in lines[0]
+    assert "axes.vehicle" in lines[0]
     assert "Traceback" not in captured.out + captured.err
     assert set(tmp_path.rglob("*")) == before
+
+
+def _inline_car(n: int) -> str:
+    """A car body on `n` wheelsets as one TOML inline table (a whole [vehicle] table)."""
+    bodies = ['{ name = "carbody", mass_kg = 2.0e4, pitch_inertia_kg_m2 = 5.0e5 }'] + [
+        f'{{ name = "ws{i}", mass_kg = 1200.0, x_m = {4.0 - 8.0 * i / n} }}' for i in range(n)
+    ]
+    springs = [
+        f'{{ upper = "carbody", lower = "ws{i}", stiffness_n_per_m = 1e6 }}' for i in range(n)
+    ]
+    wheels = [f'{{ body = "ws{i}" }}' for i in range(n)]
+    return (
+        f'{{ model = "multibody", bodies = [{", ".join(bodies)}], '
+        f"suspensions = [{', '.join(springs)}], wheels = [{', '.join(wheels)}] }}"
+    )

@@ -210,10 +210,15 @@ def contact_table(ds: xr.Dataset) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Indexed by ``wheel``; columns ``static load [N]``, ``contact force RMS [N]`` and
+        Indexed by ``wheel`` (its number; a train's wheel by its label, ``car2.wheel1``);
+        columns ``static load [N]``, ``contact force RMS [N]`` and
         ``loss-of-contact probability [1]``.
     """
     wheels = ds["wheel"].values if "wheel" in ds.coords else np.arange(1, ds.sizes["wheel"] + 1)
+    responses = ds["response"].values if "response" in ds.coords else ()
+    names = [wheel_name(responses, j) for j in range(len(wheels))]
+    if all("." in name for name in names):  # a train's wheels: by their label (car2.wheel1)
+        wheels = np.array(names)
     return pd.DataFrame(
         {
             "static load [N]": ds["static_contact_load"].values,

@@ -51,7 +51,12 @@ def summary_text(
     return "\n".join(parts) + "\n"
 
 
-def summary_csv(table: pd.DataFrame, header: Sequence[str] = (), footer: Sequence[str] = ()) -> str:
+def summary_csv(
+    table: pd.DataFrame,
+    header: Sequence[str] = (),
+    footer: Sequence[str] = (),
+    extra: Sequence[tuple[str, pd.DataFrame]] = (),
+) -> str:
     """The summary as CSV text: ``# `` comment lines (header, footer, units), then the table.
 
     Parameters
@@ -62,16 +67,25 @@ def summary_csv(table: pd.DataFrame, header: Sequence[str] = (), footer: Sequenc
         The case lines.
     footer : sequence of str
         Further lines of the header block (the contact check).
+    extra : sequence of (str, pandas.DataFrame)
+        Further tables (a train's per-car table), each written in the comment block as
+        ``# <title>:`` and its CSV lines, each after ``# `` (strip it to read the table).
 
     Returns
     -------
     str
         Read it back with ``pandas.read_csv(path, comment="#", index_col=0)``.
     """
+    tables = [
+        line
+        for title, frame in extra
+        for line in (f"{title}:", *frame.to_csv(float_format="%.6g").splitlines())
+    ]
     lines = [
         'railvib summary (pandas.read_csv(path, comment="#", index_col=0))',
         *header,
         *footer,
+        *tables,
         UNITS_NOTE,
     ]
     block = "".join(f"# {line}\n" for line in lines)

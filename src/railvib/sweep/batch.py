@@ -36,6 +36,7 @@ from railvib.solve import criteria_settings
 from railvib.sweep.layout import SweepLayout, is_cheap_field, is_pad_field
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.stacked import frf_case_stack
+from railvib.sweep.trains import compute_train_chunk, length_groups
 from railvib.track.compiled import use_compiled
 from railvib.track.periodic import PeriodicTrack
 from railvib.units import kmh_to_ms
@@ -174,7 +175,18 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
         (``irregularity_psd``: ``(n_case, n_freq)``), summary variables
         ``(n_case, n_resp)`` and the contact check (:data:`CONTACT_SUMMARY`:
         ``(n_case, n_wheel)`` and ``(n_case,)``); cases in C order over the chunk block.
+        Over trains of several lengths, the longest train's responses and wheels, NaN
+        where a shorter train has none (:mod:`railvib.sweep.trains`).
     """
+    if length_groups(spec):  # each train length is another coupled system: solved alone
+        return compute_train_chunk(
+            spec, chunk_id, _compute_layout, {**CONTACT_SUMMARY, **CRITERIA_SUMMARY}
+        )
+    return _compute_layout(spec, chunk_id)
+
+
+def _compute_layout(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
+    """:func:`compute_chunk` of cases that share one response and wheel layout."""
     layout = SweepLayout(spec)
     base = spec.base_case_dict()
     f = build_grid(case_from_dict(base, warn=False)).f

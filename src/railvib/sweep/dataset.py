@@ -19,10 +19,11 @@ from railvib.results.stats import summary_attrs, summary_names
 from railvib.results.units import QUANTITY_UNITS, summary_quantity, with_unit_coordinates
 from railvib.results.variables import VARIABLES
 from railvib.solve import criteria_settings
-from railvib.sweep.batch import CONTACT_SUMMARY, CRITERIA_SUMMARY, case_labels
+from railvib.sweep.batch import CONTACT_SUMMARY, CRITERIA_SUMMARY
 from railvib.sweep.folder import CSV_NAME, MANIFEST, NETCDF_NAME, PLOTS_NAME, ZARR_NAME
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
+from railvib.sweep.trains import TRAIN_CARS, label_car, sweep_labels
 
 __all__ = [
     "field_unit",
@@ -109,12 +110,12 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
     base = case_from_dict(spec.base_case_dict(), warn=False)
     system = build_system(base)
     f = build_grid(base).f
-    labels = case_labels(system)
+    labels, wheels = sweep_labels(spec)  # a sweep over train length: the longest train's
     dims = layout.dims
-    n_wheel = system.vehicle.wheel_offsets.size
+    n_wheel = len(wheels)
     coords: dict[str, Any] = {
         "frequency": ("frequency", f, {"units": "Hz", "long_name": "frequency"}),
-        "response": ("response", labels, {"long_name": "response"}),
+        "response": ("response", list(labels), {"long_name": "response"}),
         "wheel": ("wheel", np.arange(1, n_wheel + 1), {"long_name": "wheel"}),
     }
     for ax in spec.axes:
@@ -149,6 +150,23 @@ def sweep_dataset(spec: SweepSpec, arrays: dict[str, NDArray[Any]], fingerprint:
             continue
         da = xr.DataArray(arrays[f"summary/{name}"], dims=(*sweep_dims, *extra))
         data[name] = da.transpose(*extra, *sweep_dims).assign_attrs(criteria_attrs[name])
+    if f"summary/{TRAIN_CARS}" in arrays:  # a sweep over train length (NaN-padded)
+        data[TRAIN_CARS] = xr.DataArray(
+            arrays[f"summary/{TRAIN_CARS}"],
+            dims=sweep_dims,
+            attrs={"long_name": "number of cars of the case's train", "units": "1"},
+        )
+        car = "car of each {} (its values are NaN where train_cars is smaller; docs/sweeps.md)"
+        coords["response_car"] = (
+            "response",
+            [label_car(r) for r in labels],
+            {"long_name": car.format("response")},
+        )
+        coords["wheel_car"] = (
+            "wheel",
+            [label_car(w) for w in wheels],
+            {"long_name": car.format("wheel")},
+        )
     quantities = {name: name for name in spec.variables if name in QUANTITY_UNITS}
     for name in summary_names(spec.rms_bands):
         quantity = summary_quantity(name, summarised)
@@ -230,7 +248,7 @@ def _check_complete(ds: xr.Dataset, path: Path) -> None:
     """
     for name, da in ds.data_vars.items():
         if da.dtype.kind in "fc":
-            missing = int(np.count_nonzero(~np.isfinite(da.values)))
+            missing = int(np.count_nonzero(~np.isfinite(da.values) & _present(ds, da)))
             if missing:
                 raise CaseError(
                     "sweep",
@@ -239,6 +257,20 @@ def _check_complete(ds: xr.Dataset, path: Path) -> None:
                     "values missing: chunk files deleted or damaged); rerun the same "
                     "`railvib sweep` command, which rebuilds sweep.zarr from its finished cases",
                 )
+
+
+def _present(ds: xr.Dataset, da: xr.DataArray) -> NDArray[np.bool_]:
+    """Where `da` holds a value: all of it, but for the cars a shorter train lacks.
+
+    A sweep over train length pads the responses and wheels of the cars a train does not
+    have with NaN (:mod:`railvib.sweep.trains`); those are not missing values.
+    """
+    present = xr.ones_like(da, dtype=bool)
+    if TRAIN_CARS in ds:
+        for dim, coord in (("response", "response_car"), ("wheel", "wheel_car")):
+            if dim in da.dims:
+                present = present & (ds[coord] <= ds[TRAIN_CARS])
+    return np.asarray(present.transpose(*da.dims).values)
 
 
 #: what a sweep result is, as said in errors
@@ -302,6 +334,8 @@ def summary_table(ds: xr.Dataset) -> pd.DataFrame:
     unit are headed ``<name> [<unit>]``. The contact check of the case is joined to
     each of its rows: ``contact_force_rms_max [N]`` and
     ``loss_of_contact_probability_max [1]`` (worst wheel) and ``linear_model_valid``.
+    Over trains of several lengths (``train_cars`` in `ds`) each case has the rows of the
+    responses its own train has, and a ``train_cars`` column.
 
     Parameters
     ----------
@@ -347,10 +381,15 @@ def summary_table(ds: xr.Dataset) -> pd.DataFrame:
             per_case[column] = ds[name].max("wheel")
     if "linear_model_valid" in ds:
         per_case["linear_model_valid"] = ds["linear_model_valid"]
+    if TRAIN_CARS in ds:
+        per_case[TRAIN_CARS] = ds[TRAIN_CARS]
     if per_case and dims:
         cases = xr.Dataset(per_case).drop_vars(unit_coords, errors="ignore").to_dataframe()
         cases = cases[list(per_case)]
         out = out.join(cases, on=dims)
+    if TRAIN_CARS in ds:  # a row per response the case's train has
+        car_of = dict(zip(ds["response"].values, ds["response_car"].values, strict=True))
+        out = out[[car_of[r] for r in responses] <= out[TRAIN_CARS].to_numpy()]
     return out
 
 

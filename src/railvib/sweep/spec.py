@@ -66,6 +66,8 @@ __all__ = [
     "SweepAxis",
     "SweepFile",
     "SweepSpec",
+    "TRAIN_LENGTH_FIELDS",
+    "is_train_length_field",
     "load_sweep",
     "nested_override",
     "sweep_from_dict",
@@ -82,7 +84,13 @@ _FIXED_PREFIXES = ("frequency", "output", "title")
 #: keys of a case file that are not case fields: merged before the axes apply
 _NOT_FIELDS = ("preset",)
 #: the case fields an axis can vary (the top of their dotted names)
-_VARIABLE_FIELDS = "speed_kmh, rail_model, vehicle.*, track.*, contact.* and irregularity.*"
+_VARIABLE_FIELDS = (
+    "speed_kmh, rail_model, vehicle.*, train.*, track.*, contact.* and irregularity.*"
+)
+
+#: the case fields that set the number of cars of a train: an axis over them varies the
+#: response and wheel axes, laid out as the longest train's (:mod:`railvib.sweep.trains`)
+TRAIN_LENGTH_FIELDS = ("train", "train.cars")
 
 #: most values of one axis (each is validated with the base case, about 0.5 ms each)
 MAX_AXIS_VALUES = 10_000
@@ -763,6 +771,17 @@ def _check_size(
         return
     case = case_from_dict(base, base_dir=base_dir, warn=False)
     vehicle = build_vehicle(case)
+    for ax in axes:  # the dataset is laid out as the longest train's
+        if is_train_length_field(ax.field):
+            for value in ax.values:
+                train = build_vehicle(
+                    case_from_dict(
+                        merge_case_dicts(base, nested_override(ax.field, _thaw(value))),
+                        base_dir=base_dir,
+                        warn=False,
+                    )
+                )
+                vehicle = max(vehicle, train, key=lambda v: len(v.wheels))
     extra = {"response": len(vehicle.dofs) + len(vehicle.wheels), "wheel": len(vehicle.wheels)}
     per_frequency = sum(extra.get(str(PER_FREQUENCY_VARIABLES[v]), 1) for v in spec.variables)
     n_freq = len(build_grid(case))
@@ -814,15 +833,35 @@ def _check_temperature_axis(base: dict[str, Any], fields: list[str], base_dir: P
         )
 
 
+def is_train_length_field(field: str) -> bool:
+    """Tell whether an axis over `field` can change the number of cars of a train.
+
+    Parameters
+    ----------
+    field : str
+        Dotted case field.
+
+    Returns
+    -------
+    bool
+        True for ``train.cars`` and the whole ``train`` table.
+    """
+    return field in TRAIN_LENGTH_FIELDS
+
+
 def _check_value(base: dict[str, Any], field: str, value: Any, base_dir: Path, where: str) -> None:
     """Validate the base case with one axis value, so a bad value is named at load time."""
     override = nested_override(field, value)
     try:
         case = case_from_dict(merge_case_dicts(base, override), base_dir=base_dir)
+        if is_train_length_field(field):  # another train: its criteria settings must apply
+            _check_criteria(_case_dump(case), base_dir)
     except CaseError as exc:
         raise CaseError(
             exc.field, exc.value, f"{exc.allowed} [sweep {where}, field {field}]"
         ) from None
+    if is_train_length_field(field):
+        return  # the cars are the base case's; the dataset is the longest train's layout
     if field.split(".")[0] in ("vehicle", "train"):
         layout = _layout(build_vehicle(case))
         base_layout = _layout(build_vehicle(case_from_dict(base, base_dir=base_dir, warn=False)))
@@ -832,8 +871,9 @@ def _check_value(base: dict[str, Any], field: str, value: Any, base_dir: Path, w
                 value,
                 f"a value that keeps the base case's vehicle DOFs and wheels ({len(base_layout[0])}"
                 f" DOFs, {len(base_layout[1])} wheels; this one has {len(layout[0])} and "
-                f"{len(layout[1])}): the cases of a sweep share one response axis; run one case "
-                f"(or one sweep) per train length or vehicle topology [sweep {where}]",
+                f"{len(layout[1])}): the cases of a sweep share one response axis; run one "
+                f"sweep per vehicle topology (a train length is swept with train.cars) "
+                f"[sweep {where}]",
             )
 
 
