@@ -29,7 +29,7 @@ import importlib
 import importlib.util
 import sys
 from types import ModuleType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 if TYPE_CHECKING:  # what the facade gives, for type checkers and IDEs
     from railvib.case import Case, build_system, case_from_dict, load_case, load_preset_case  # noqa: F401
@@ -113,7 +113,10 @@ def _register_accessor(xarray: ModuleType) -> None:
 
 
 class _RegisterAfter:
-    """The loader of xarray, wrapped: after xarray has run, the accessor is registered."""
+    """The loader of xarray, wrapped: after xarray has run, the accessor is registered.
+
+    Duck-typed (``create_module``, ``exec_module``): ``importlib.abc`` costs 50 ms to import.
+    """
 
     def __init__(self, loader: Any) -> None:
         self._loader = loader
@@ -138,7 +141,7 @@ class _WhenXarrayIsImported:
         sys.meta_path.remove(self)
         spec = importlib.util.find_spec(name)
         if spec is not None and spec.loader is not None:
-            spec.loader = _RegisterAfter(spec.loader)
+            spec.loader = cast(Any, _RegisterAfter(spec.loader))  # a loader (duck-typed)
         return spec
 
 

@@ -30,6 +30,7 @@ force          dB                              F0 = 1 N (issue 16's choice; ISO 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -332,7 +333,7 @@ class ThirdOctave(DerivedOutput):
             values = psd.values / np.reshape(divisor, shape)  # f > 0 on every grid
             ms = band_mean_square(f, values, lower, upper, axis=axis)
             dims = tuple("band" if d == "frequency" else d for d in psd.dims)
-            band_coords = {
+            band_coords: dict[Any, Any] = {
                 **coords,
                 **{k: psd[k] for k in psd.dims if k != "frequency" and k in psd.coords},
             }
