@@ -81,7 +81,8 @@ class RailvibAccessor:
             :func:`railvib.results.summary`: ``peak``, ``dominant_frequency``, ``rms``
             and ``rms_<lo>_<hi>_hz``, with units (over the sweep dimensions too).
         """
-        return summary(self._ds.assign({variable: self._psd(variable)}), bands, variable)
+        self._psd(variable)  # a one-line error for a PSD the dataset lacks
+        return summary(self._ds, bands, variable)
 
     def rms(
         self, band: tuple[float, float] | None = None, variable: str = "psd_acceleration"

@@ -318,10 +318,20 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
     return modify_doc
 
 
-def _free_port(host: str) -> int:
-    """A port free on `host` now (for ``--port 0``)."""
+def _free_port(host: str, port: int) -> int:
+    """`port` if it is free on `host` now (0: any free port), else a one-line error."""
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind((host, 0))
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as the server will
+        try:
+            s.bind((host, port))
+        except socket.gaierror as exc:
+            raise RailvibError(
+                f"--host = {host!r}: an address of this machine ({exc.strerror})"
+            ) from None
+        except OSError as exc:
+            raise RailvibError(
+                f"--port = {port}: cannot listen on {host}:{port} ({exc.strerror})"
+            ) from None
         return int(s.getsockname()[1])
 
 
@@ -361,8 +371,8 @@ def serve(
     from bokeh.application.handlers.function import FunctionHandler
     from bokeh.server.server import Server
 
+    port = _free_port(host, port)  # before the case is run for the page
     explorer = Explorer(base)
-    port = port or _free_port(host)
     origins = [f"{host}:{port}", f"localhost:{port}", f"127.0.0.1:{port}"]
     try:
         server = Server(
