@@ -167,6 +167,7 @@ class RailvibAccessor:
         ax: Axes | None = None,
         logx: bool = True,
         ylim: tuple[float, float] | str | None = "auto",
+        label: str = "",
         **line_kw: Any,
     ) -> Axes:
         """Plot the PSDs of `responses` against frequency (one line per sweep point too).
@@ -183,6 +184,8 @@ class RailvibAccessor:
             Logarithmic frequency axis.
         ylim : (float, float), "auto" or None
             PSD axis limits in the unit of `variable`; ``"auto"``: from the data drawn.
+        label : str
+            Prefix of the legend labels (e.g. the case's name).
         **line_kw
             Passed to ``Axes.plot``.
 
@@ -211,9 +214,10 @@ class RailvibAccessor:
         for point in points:
             at = dict(zip(extra, point, strict=True))
             one = self._ds.isel(at) if at else self._ds
-            label = " ".join(f"{d}={_text(one[d].item())}" for d in extra if d in one.coords)
+            where = [f"{d}={_text(one[d].item())}" for d in extra if d in one.coords]
+            text = " ".join([label, *where]).strip()
             ax = plot_psd(
-                one, chosen, variable=variable, ax=ax, logx=logx, label=label, ylim=None, **line_kw
+                one, chosen, variable=variable, ax=ax, logx=logx, label=text, ylim=None, **line_kw
             )
         if ax is None:
             raise CaseError(

@@ -181,6 +181,11 @@ def test_plot_psd_of_a_sweep_draws_one_line_per_point():
     ax = ds.railvib.plot_psd(["wheelset1.bounce"], variable="psd_displacement")
     labels = [line.get_label() for line in ax.get_lines()]
     assert labels == ["speed_kmh=40", "speed_kmh=80"]
+    other = ds.railvib.plot_psd(["wheelset1.bounce"], label="case A")
+    assert [line.get_label() for line in other.get_lines()] == [
+        "case A speed_kmh=40",
+        "case A speed_kmh=80",
+    ]
     np.testing.assert_allclose(ax.get_lines()[1].get_ydata(), 2e-9)
     assert ax.get_ylabel() == "displacement PSD [m^2/Hz]"
 
