@@ -104,6 +104,7 @@ def test_save_writes_a_case_file_railvib_runs(explorer, tmp_path):
     )
     case = load_case(path)
     assert case.speed_kmh == 120.0
+    assert case.title.endswith("[explored: speed_kmh 120, fra_class 4]")  # not "80 km/h" alone
     assert case.irregularity["long_wave"]["class_number"] == 4
     assert sorted(p.name for p in tmp_path.iterdir()) == ["c.toml"]  # no temporary left
 

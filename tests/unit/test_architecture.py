@@ -53,7 +53,7 @@ LAYERS = {
     "sweep": 9,
     "reproduce": 9,
     "nonstationary": 9,
-    "accessor": 9,
+    "accessor": 8,
     "explore": 9,
     "cli": 10,
     "__init__": 10,

@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 
 from railvib.accessor import RailvibAccessor
 from railvib.case import Case, case_from_dict, load_preset_case
+from railvib.case.schema import MAX_TITLE_CHARS
 from railvib.errors import CaseError
 from railvib.io import write_text
 from railvib.outputs import contact_line
@@ -225,6 +226,7 @@ class Explorer:
             if value not in allowed:
                 raise CaseError(field, value, f"one of {allowed}")
         data = _copy(self._table)
+        data["title"] = self.title(controls)
         data["speed_kmh"] = float(controls.speed_kmh)
         if controls.track != AS_CASE:
             chosen = _copy(self.tracks[controls.track])
@@ -242,6 +244,30 @@ class Explorer:
             data.pop("train", None)  # a vehicle preset is one car
             data["vehicle"] = {"preset": controls.vehicle}
         return data
+
+    def title(self, controls: Controls) -> str:
+        """The case's title, followed by what the controls changed (the saved file says it).
+
+        Parameters
+        ----------
+        controls : Controls
+            The state of the controls.
+
+        Returns
+        -------
+        str
+            E.g. ``"<title> [explored: speed_kmh 120, pad_factor 1.3]"``; the base title when
+            nothing changed (at most :data:`railvib.case.schema.MAX_TITLE_CHARS` characters).
+        """
+        start = self.initial()
+        changed = [
+            f"{name} {_text(getattr(controls, name))}"
+            for name in Controls.__dataclass_fields__
+            if getattr(controls, name) != getattr(start, name)
+        ]
+        if not changed:
+            return self.base.title
+        return f"{self.base.title} [explored: {', '.join(changed)}]"[:MAX_TITLE_CHARS]
 
     def case(self, controls: Controls) -> tuple[Case, tuple[str, ...]]:
         """The validated case of `controls` and its plausibility warnings.
@@ -317,6 +343,11 @@ class Explorer:
         text = case.to_toml()
         case_from_dict(tomllib.loads(text), warn=False)  # the text read back is a valid case
         return write_text(path, text)
+
+
+def _text(value: Any) -> str:
+    """A control's value in a title: numbers in ``%g``."""
+    return f"{value:g}" if isinstance(value, float) else str(value)
 
 
 def _copy(table: Any) -> Any:
