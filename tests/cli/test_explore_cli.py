@@ -4,8 +4,12 @@ Each case asserts the exit code, one stderr line naming the field or file, no
 "Traceback", and no file left that was not there before (the page's case file included).
 """
 
+import json
+import os
 import socket
+import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -65,3 +69,21 @@ def test_a_host_that_is_no_address_is_named(tmp_path, monkeypatch, capsys):
     pytest.importorskip("bokeh", reason="the extra 'explore' (Bokeh) is not installed")
     err = _refused(["explore", "--host", "no-such-host.invalid"], tmp_path, monkeypatch, capsys)
     assert err.startswith("error: --host = 'no-such-host.invalid': an address of this machine")
+
+
+def test_help_loads_neither_bokeh_nor_the_numerical_stack():
+    src = Path(__file__).resolve().parents[2] / "src"
+    code = (
+        "import json, sys\nfrom railvib.cli.main import main\n"
+        "assert main(['explore', '--help']) == 0\n"
+        "print(json.dumps([m for m in ('bokeh', 'numpy', 'xarray') if m in sys.modules]))"
+    )
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join([str(src), os.environ.get("PYTHONPATH", "")]),
+    }
+    out = subprocess.run(
+        [sys.executable, "-c", code], env=env, check=True, capture_output=True, text=True
+    ).stdout
+    assert "CASE_FILE" in out
+    assert json.loads(out.strip().splitlines()[-1]) == []
