@@ -14,7 +14,7 @@ import pytest
 import railvib
 from railvib.case import load_case
 from railvib.errors import CaseError
-from railvib.explore import AS_CASE, Explorer
+from railvib.explore import AS_CASE, Explorer, controls_from_values
 from railvib.presets import load_vehicle_preset
 
 K_PAD = 5.0e7  # N/m, the preset's pad stiffness
@@ -112,4 +112,25 @@ def test_save_writes_a_case_file_railvib_runs(explorer, tmp_path):
 def test_save_of_a_refused_case_writes_nothing(explorer, tmp_path):
     with pytest.raises(CaseError, match="speed_kmh"):
         explorer.save(replace(explorer.initial(), speed_kmh=-5.0), tmp_path / "c.toml")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("values", "field"),
+    [
+        ({"speed_kmh": float("nan")}, "speed_kmh"),
+        ({"pad_factor": -1.0}, "track.pad.stiffness_n_per_m"),
+        ({"pad_temperature_c": 1e9}, "track.pad_temperature_c"),
+        ({"fra_class": "9"}, "irregularity.long_wave.class_number"),
+        ({"fra_class": "worst"}, "explore.fra_class"),
+        ({"speed_kmh": "fast"}, "explore.speed_kmh"),
+        ({"vehicle": "../../etc/passwd"}, "explore.vehicle"),
+        ({"pad": "tabulated (/tmp/pad.csv)"}, "explore.pad"),
+        ({"output": "/tmp/x.toml"}, "explore"),
+    ],
+)
+def test_values_a_crafted_message_could_send_are_refused(explorer, tmp_path, values, field):
+    # the page offers none of these; a websocket message could send them
+    with pytest.raises(CaseError, match=f"^{field} = "):
+        explorer.save(controls_from_values(explorer.initial(), values), tmp_path / "c.toml")
     assert list(tmp_path.iterdir()) == []

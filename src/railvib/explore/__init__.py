@@ -6,6 +6,6 @@ draws of a run (no web library); :mod:`railvib.explore.app` serves the page with
 docs/design/0007-live-explorer.md says why Bokeh).
 """
 
-from railvib.explore.state import AS_CASE, Controls, Explorer, Frame
+from railvib.explore.state import AS_CASE, Controls, Explorer, Frame, controls_from_values
 
-__all__ = ["AS_CASE", "Controls", "Explorer", "Frame"]
+__all__ = ["AS_CASE", "Controls", "Explorer", "Frame", "controls_from_values"]

@@ -18,7 +18,6 @@ from __future__ import annotations
 import socket
 import time
 from collections.abc import Callable
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -31,6 +30,7 @@ from railvib.explore.state import (
     Controls,
     Explorer,
     Frame,
+    controls_from_values,
 )
 
 __all__ = [
@@ -264,17 +264,10 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
         pending = {"scheduled": False}
 
         def controls() -> Controls:
-            fra = widgets["fra_class"].value
-            return replace(
-                start,
-                speed_kmh=float(widgets["speed_kmh"].value),
-                track=str(widgets["track"].value),
-                pad=str(widgets["pad"].value),
-                pad_factor=float(widgets["pad_factor"].value),
-                pad_temperature_c=float(widgets["pad_temperature_c"].value),
-                fra_class=int(fra) if start.fra_class is not None else None,
-                vehicle=str(widgets["vehicle"].value),
-            )
+            values = {name: widget.value for name, widget in widgets.items()}
+            if start.fra_class is None:
+                values["fra_class"] = None
+            return controls_from_values(start, values)
 
         def update() -> None:
             pending["scheduled"] = False

@@ -15,7 +15,7 @@ import time
 import tomllib
 import warnings
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -43,6 +43,7 @@ __all__ = [
     "Controls",
     "Explorer",
     "Frame",
+    "controls_from_values",
 ]
 
 #: the choice that keeps the case's own track, pad or vehicle
@@ -343,6 +344,41 @@ class Explorer:
         text = case.to_toml()
         case_from_dict(tomllib.loads(text), warn=False)  # the text read back is a valid case
         return write_text(path, text)
+
+
+def controls_from_values(start: Controls, values: dict[str, Any]) -> Controls:
+    """`start` with the values the page sent (each converted; nothing else is read).
+
+    Parameters
+    ----------
+    start : Controls
+        The controls the values replace.
+    values : dict
+        Control name -> value as the page holds it (a number, or a choice's name; the
+        FRA class as its text, None where the case has none).
+
+    Returns
+    -------
+    Controls
+
+    Raises
+    ------
+    railvib.errors.CaseError
+        ``explore.<name>``: a name that is no control, or a value of the wrong kind.
+    """
+    kinds = {"speed_kmh": float, "pad_factor": float, "pad_temperature_c": float}
+    out: dict[str, Any] = {}
+    for name, value in values.items():
+        if name not in Controls.__dataclass_fields__:
+            raise CaseError("explore", name, f"one of {list(Controls.__dataclass_fields__)}")
+        try:
+            if name == "fra_class":
+                out[name] = None if value is None else int(str(value))
+            else:
+                out[name] = kinds[name](value) if name in kinds else str(value)
+        except (TypeError, ValueError):
+            raise CaseError(f"explore.{name}", value, "a number") from None
+    return replace(start, **out)
 
 
 def _text(value: Any) -> str:
