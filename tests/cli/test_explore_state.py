@@ -7,6 +7,7 @@ K''/K' = 2 pi f c / k; a stiffness factor multiplies k and leaves c.
 """
 
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -134,3 +135,13 @@ def test_values_a_crafted_message_could_send_are_refused(explorer, tmp_path, val
     with pytest.raises(CaseError, match=f"^{field} = "):
         explorer.save(controls_from_values(explorer.initial(), values), tmp_path / "c.toml")
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.slow  # a run
+def test_a_nonstationary_case_is_said_to_be_shown_stationary():
+    root = Path(__file__).resolve().parents[2]
+    explorer = Explorer(load_case(root / "docs" / "examples" / "braking.toml"))
+    frame = explorer.frame(explorer.initial())
+    assert frame.notes[0].startswith(
+        "note: mode = 'nonstationary' in the case: shown is the stationary"
+    )

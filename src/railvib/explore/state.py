@@ -318,6 +318,13 @@ class Explorer:
             warnings.simplefilter("always")
             ds = run(case)
         notes = (*notes, *(f"warning: {w.message}" for w in caught))
+        if case.mode != "stationary":  # the page solves the stationary case only
+            notes = (
+                f"note: mode = {case.mode!r} in the case: shown is the stationary response at "
+                f"the speed control's {case.speed_kmh:g} km/h "
+                f"(railvib run solves the {case.mode} one)",
+                *notes,
+            )
         return _frame(case, ds, responses, notes, start)
 
     def save(self, controls: Controls, path: str | Path) -> Path:
