@@ -15,6 +15,7 @@ and :func:`serve` (docs/design/0007-live-explorer.md).
 
 from __future__ import annotations
 
+import html
 import socket
 import time
 from collections.abc import Callable
@@ -89,14 +90,20 @@ def _octave_data(frame: Frame) -> dict[str, Any]:
     return {"band": frame.band_nominal, **frame.band_levels}
 
 
-def _summary_data(frame: Frame) -> dict[str, Any]:
-    rows = frame.summary_rows
-    return {key: [row[key] for row in rows] for key in ("response", "rms", "rms_unit", "peak_hz")}
+def _summary_html(frame: Frame) -> str:
+    """The summary as an HTML table (a Bokeh DataTable kept its first cells, Bokeh 3.9)."""
+    head = "<tr><th>response</th><th>RMS</th><th>unit</th><th>peak at [Hz]</th></tr>"
+    body = "".join(
+        f"<tr><td>{html.escape(r['response'])}</td><td>{r['rms']:.4g}</td>"
+        f"<td>{html.escape(r['rms_unit'])}</td><td>{r['peak_hz']:.1f}</td></tr>"
+        for r in frame.summary_rows
+    )
+    return f"<table class='summary' style='font-size:9pt'>{head}{body}</table>"
 
 
 def _status(frame: Frame) -> str:
-    notes = "".join(f"<br>{n}" for n in frame.notes)
-    return f"<b>{frame.case.title}</b><br>run in {frame.seconds:.2f} s{notes}"
+    notes = "".join(f"<br>{html.escape(n)}" for n in frame.notes)
+    return f"<b>{html.escape(frame.case.title)}</b><br>run in {frame.seconds:.2f} s{notes}"
 
 
 def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
@@ -121,12 +128,6 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
     from bokeh.models.widgets.inputs import Select
     from bokeh.models.widgets.markups import Div
     from bokeh.models.widgets.sliders import Slider
-    from bokeh.models.widgets.tables import (
-        DataTable,
-        NumberFormatter,
-        ScientificFormatter,
-        TableColumn,
-    )
     from bokeh.plotting import figure
 
     from railvib.plot.psd import psd_ylim
@@ -191,7 +192,6 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
         psd_source = ColumnDataSource(_psd_data(frame), name="psd_source")
         pad_source = ColumnDataSource(_pad_data(frame), name="pad_source")
         octave_source = ColumnDataSource(_octave_data(frame), name="octave_source")
-        summary_source = ColumnDataSource(_summary_data(frame), name="summary_source")
 
         unit = "; ".join(dict.fromkeys(frame.psd_units.values()))
         lo, hi = psd_ylim(list(frame.psd.values())) or (1e-12, 1.0)
@@ -245,21 +245,7 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
         for plot in (psd_plot, octave_plot):
             plot.legend.location = "bottom_left"
             plot.legend.label_text_font_size = "8pt"
-        table = DataTable(
-            source=summary_source,
-            columns=[
-                TableColumn(field="response", title="response"),
-                TableColumn(field="rms", title="RMS", formatter=ScientificFormatter(precision=3)),
-                TableColumn(field="rms_unit", title="unit"),
-                TableColumn(
-                    field="peak_hz", title="peak at [Hz]", formatter=NumberFormatter(format="0.0")
-                ),
-            ],
-            width=720,
-            height=300,
-            index_position=None,
-            name="summary_table",
-        )
+        table = Div(text=_summary_html(frame), width=720, name="summary_table")
 
         pending = {"scheduled": False}
 
@@ -274,7 +260,7 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
             try:
                 new = explorer.frame(controls(), responses)
             except RailvibError as exc:  # a case railvib run refuses: said, plots kept
-                status.text = f"<span style='color:#b00'>error: {exc}</span>"
+                status.text = f"<span style='color:#b00'>error: {html.escape(str(exc))}</span>"
                 return
             begin = time.perf_counter()
             psd_source.data = _psd_data(new)
@@ -283,7 +269,7 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
                 psd_plot.y_range.update(start=limits[0], end=limits[1])
             pad_source.data = _pad_data(new)
             octave_source.data = _octave_data(new)
-            summary_source.data = _summary_data(new)
+            table.text = _summary_html(new)
             status.text = _status(new) + f" (page data {time.perf_counter() - begin:.3f} s)"
 
         def changed(attr: str, old: Any, new: Any) -> None:
@@ -298,9 +284,9 @@ def make_document(explorer: Explorer, output: Path) -> Callable[[Any], None]:
             try:
                 path = explorer.save(controls(), output)
             except (RailvibError, OSError) as exc:
-                saved.text = f"<span style='color:#b00'>error: {exc}</span>"
+                saved.text = f"<span style='color:#b00'>error: {html.escape(str(exc))}</span>"
                 return
-            saved.text = f"saved {path}"
+            saved.text = f"saved {html.escape(str(path))}"
 
         save.on_click(on_save)
         panel = column(*widgets.values(), save, saved, status, width=400)
