@@ -343,7 +343,8 @@ def serve(
     Raises
     ------
     railvib.errors.RailvibError
-        Bokeh (the extra ``explore``) is not installed, or the port is taken.
+        Bokeh (the extra ``explore``) is not installed, the port is taken, or the case
+        cannot run (e.g. :class:`railvib.errors.NonFiniteResult`).
     """
     require_bokeh()
     from bokeh.application import Application
@@ -352,6 +353,7 @@ def serve(
 
     port = _free_port(host, port)  # before the case is run for the page
     explorer = Explorer(base)
+    explorer.frame(explorer.initial())  # a case that cannot run is refused before serving
     origins = [f"{host}:{port}", f"localhost:{port}", f"127.0.0.1:{port}"]
     try:
         server = Server(
