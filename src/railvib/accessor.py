@@ -16,7 +16,7 @@ Examples
 >>> ds = railvib.run(railvib.load_preset_case())
 >>> rms = ds.railvib.rms((0.5, 20.0))
 >>> rms.attrs["units"], round(float(rms.sel(response="carbody.bounce")), 3)
-('m/s^2', 0.087)
+('m/s^2', 0.11)
 """
 
 from __future__ import annotations

@@ -27,3 +27,14 @@ def test_the_docs_name_every_accessor_method():
     assert documented <= set(public)
     for name in documented:
         assert f"ds.railvib.{name}(" in text, name
+
+
+@pytest.mark.slow  # runs the default case: about 1 s
+def test_the_accessor_docstring_example_holds():
+    import doctest
+
+    import railvib.accessor
+
+    result = doctest.testmod(railvib.accessor)
+    assert result.attempted >= 3
+    assert result.failed == 0
