@@ -14,13 +14,22 @@ Examples
 >>> ds = railvib.run(case)                        # xarray.Dataset of PSDs and FRFs
 >>> railvib.summary(ds).dominant_frequency.sel(response="bogie1.bounce").item() < 10
 True
+>>> float(ds.railvib.rms().sel(response="carbody.bounce")) > 0  # the xarray accessor
+True
+
+Importing railvib registers the accessor ``ds.railvib`` (:mod:`railvib.accessor`) on
+``xarray.Dataset``: at once when xarray is already imported, else as soon as it is, so
+``import railvib`` does not load xarray; :mod:`railvib.accessor` itself loads on the
+first use of ``ds.railvib``.
 """
 
 from __future__ import annotations
 
 import importlib
 import importlib.util
-from typing import TYPE_CHECKING, Any
+import sys
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, cast
 
 if TYPE_CHECKING:  # what the facade gives, for type checkers and IDEs
     from railvib.case import Case, build_system, case_from_dict, load_case, load_preset_case  # noqa: F401
@@ -76,3 +85,67 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_FACADE))
+
+
+#: the name of the xarray accessor, and the module and class it loads on first use
+ACCESSOR = ("railvib", "railvib.accessor", "RailvibAccessor")
+
+
+class _Accessor:
+    """``xarray.Dataset.railvib``: loads :mod:`railvib.accessor` on first use, then its class.
+
+    xarray's accessor protocol (a class attribute whose ``__get__`` gives the accessor
+    of a dataset), without importing the accessor's module (and the numerical stack)
+    when it is registered.
+    """
+
+    def __get__(self, ds: Any, owner: type | None = None) -> Any:
+        _, module, name = ACCESSOR
+        cls = getattr(importlib.import_module(module), name)
+        return cls if ds is None else cls(ds)
+
+
+def _register_accessor(xarray: ModuleType) -> None:
+    """Put the ``railvib`` accessor on ``xarray.Dataset`` unless something holds the name."""
+    dataset = xarray.Dataset
+    if ACCESSOR[0] not in vars(dataset):
+        setattr(dataset, ACCESSOR[0], _Accessor())
+
+
+class _RegisterAfter:
+    """The loader of xarray, wrapped: after xarray has run, the accessor is registered.
+
+    Duck-typed (``create_module``, ``exec_module``): ``importlib.abc`` costs 50 ms to import.
+    """
+
+    def __init__(self, loader: Any) -> None:
+        self._loader = loader
+
+    def create_module(self, spec: Any) -> Any:
+        return self._loader.create_module(spec)
+
+    def exec_module(self, module: ModuleType) -> None:
+        module.__loader__ = self._loader  # xarray's own loader again, for resources
+        if module.__spec__ is not None:
+            module.__spec__.loader = self._loader
+        self._loader.exec_module(module)
+        _register_accessor(module)
+
+
+class _WhenXarrayIsImported:
+    """A finder on ``sys.meta_path`` that waits for ``import xarray`` (then leaves)."""
+
+    def find_spec(self, name: str, path: Any = None, target: Any = None) -> Any:
+        if name != "xarray":
+            return None
+        sys.meta_path.remove(self)
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.loader is not None:
+            spec.loader = cast(Any, _RegisterAfter(spec.loader))  # a loader (duck-typed)
+        return spec
+
+
+if "xarray" in sys.modules:
+    _register_accessor(sys.modules["xarray"])
+else:
+    sys.meta_path.insert(0, _WhenXarrayIsImported())

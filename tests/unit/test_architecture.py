@@ -53,6 +53,8 @@ LAYERS = {
     "sweep": 9,
     "reproduce": 9,
     "nonstationary": 9,
+    "accessor": 8,
+    "explore": 9,
     "cli": 10,
     "__init__": 10,
 }
@@ -71,6 +73,7 @@ LAZY_LIBRARIES = {
     "jax": "stacked kernels on JAX, only when backend='jax' is asked for (railvib.stack)",
     "numba": "the compiled wave kernel, only on a large stack (railvib.track.compiled)",
     "plotly": "the plotly.js text inlined in the reproduce report only (railvib.reproduce.report)",
+    "bokeh": "the live explorer only (railvib.explore, the optional extra 'explore')",
 }
 
 

@@ -119,6 +119,7 @@ def _register_optional() -> None:
         ("railvib.cli.reproduce", "reproduce"),
         ("railvib.cli.sweep", "sweep"),
         ("railvib.cli.track", "track"),
+        ("railvib.cli.explore", "explore"),
     ):
         try:
             mod = importlib.import_module(module)

@@ -30,6 +30,7 @@ force          dB                              F0 = 1 N (issue 16's choice; ISO 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -42,6 +43,8 @@ from railvib.registry import parameter
 __all__ = [
     "BAND_EDGE_RATIO",
     "NOMINAL_MANTISSAS",
+    "OCTAVE_QUANTITIES",
+    "OCTAVE_SOURCES",
     "REFERENCES",
     "OctaveBands",
     "ThirdOctave",
@@ -64,6 +67,19 @@ REFERENCES: dict[str, tuple[float, str]] = {
     "displacement": (1e-12, "dB re 1e-12 m"),
     "force": (1.0, "dB re 1 N"),
 }
+
+#: the PSD each band quantity is read from, and the quantity's unit; velocity is the
+#: acceleration PSD over (2 pi f)^2 (translational responses: pitch is rad-based)
+OCTAVE_SOURCES: dict[str, tuple[str, str]] = {
+    "acceleration": ("psd_acceleration", "m/s^2"),
+    "velocity": ("psd_acceleration", "m/s"),
+    "displacement": ("psd_displacement", "m"),
+    "force": ("psd_force", "N"),
+    "support_force": ("psd_support_force", "N"),
+}
+
+#: the quantities of :meth:`ThirdOctave.levels`, in the order of its variables
+OCTAVE_QUANTITIES = tuple(OCTAVE_SOURCES)
 
 
 @dataclass(frozen=True)
@@ -270,30 +286,63 @@ class ThirdOctave(DerivedOutput):
         use the same numbers as references (1e-6 rad/s^2, ...), which no standard
         defines: read them as relative levels only.
         """
+        return self.levels(
+            ds, OCTAVE_QUANTITIES[:4] + ("support_force",) * ("psd_support_force" in ds)
+        )
+
+    def levels(
+        self, ds: xr.Dataset, quantities: tuple[str, ...] | None = None
+    ) -> dict[str, xr.DataArray]:
+        """Band mean squares ``octave_ms_<q>`` and levels ``octave_level_<q>`` of `quantities`.
+
+        Parameters
+        ----------
+        ds : xarray.Dataset
+            A result dataset: a run's, or a sweep's (its sweep dimensions are kept).
+        quantities : tuple of str, optional
+            From :data:`OCTAVE_QUANTITIES`, each read from its PSD
+            (:data:`OCTAVE_SOURCES`); None: every one whose PSD `ds` holds.
+
+        Returns
+        -------
+        dict of str to xarray.DataArray
+            Over ``band`` (the exact mid-band frequency, Hz, with its nominal frequency
+            and edges) and the PSD's other dimensions, with units; ``velocity`` also
+            gives ``octave_level_velocity_vdb``.
+
+        Raises
+        ------
+        railvib.errors.CaseError
+            A quantity not in :data:`OCTAVE_QUANTITIES`, or whose PSD `ds` lacks.
+        """
+        available = tuple(q for q in OCTAVE_QUANTITIES if OCTAVE_SOURCES[q][0] in ds)
+        for quantity in quantities or ():
+            if quantity not in available:
+                raise CaseError("quantity", quantity, f"one of {list(available)}")
         f = ds["frequency"].values
         bands = self.bands(f)
         coords = _band_coords(bands)
         lower, upper = bands.lower, bands.upper
         out: dict[str, xr.DataArray] = {}
-        omega2 = (2.0 * np.pi * f) ** 2
-        ones = np.ones_like(f)
-        sources = {
-            "acceleration": (ds["psd_acceleration"], ones, "m/s^2"),
-            "velocity": (ds["psd_acceleration"], omega2, "m/s"),  # f > 0 on every grid
-            "displacement": (ds["psd_displacement"], ones, "m"),
-            "force": (ds["psd_force"], ones, "N"),
-        }
-        if "psd_support_force" in ds:  # the layers of the seat under each wheel
-            sources["support_force"] = (ds["psd_support_force"], ones, "N")
-        for quantity, (psd, divisor, unit) in sources.items():
+        for quantity in available if quantities is None else quantities:
+            variable, unit = OCTAVE_SOURCES[quantity]
+            psd = ds[variable]
+            divisor = (2.0 * np.pi * f) ** 2 if quantity == "velocity" else np.ones_like(f)
             axis = psd.get_axis_num("frequency")
             shape = [-1 if d == "frequency" else 1 for d in psd.dims]
-            values = psd.values / np.reshape(divisor, shape)
+            values = psd.values / np.reshape(divisor, shape)  # f > 0 on every grid
             ms = band_mean_square(f, values, lower, upper, axis=axis)
             dims = tuple("band" if d == "frequency" else d for d in psd.dims)
+            band_coords: dict[Any, Any] = {
+                **coords,
+                **{k: psd[k] for k in psd.dims if k != "frequency" and k in psd.coords},
+            }
             band_text = f"{quantity} mean square in one-third-octave bands (IEC 61260-1)"
             out[f"octave_ms_{quantity}"] = xr.DataArray(
-                ms, dims=dims, coords=coords, attrs={"units": f"({unit})^2", "long_name": band_text}
+                ms,
+                dims=dims,
+                coords=band_coords,
+                attrs={"units": f"({unit})^2", "long_name": band_text},
             )
             names = [quantity, "velocity_vdb"] if quantity == "velocity" else [quantity]
             for name in names:
@@ -301,7 +350,7 @@ class ThirdOctave(DerivedOutput):
                 out[f"octave_level_{name}"] = xr.DataArray(
                     level_db(ms, ref),
                     dims=dims,
-                    coords=coords,
+                    coords=band_coords,
                     attrs={
                         "units": label.split(" re ")[0],
                         "long_name": f"{quantity} level in one-third-octave bands, {label}",
