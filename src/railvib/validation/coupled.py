@@ -31,8 +31,8 @@ from railvib.response import FRF
 from railvib.track.ballasted import BallastedTrack  # its layers only, not its solver
 from railvib.track.periodic import PeriodicTrack, Rail  # the parameter records only, not the solver
 from railvib.track.slab import FloatingSlabTrack, SlabTrack, UnitSlabTrack  # parameters only
-from railvib.validation.finite_slab import FiniteSlabTrack
 from railvib.validation._legacy import SYSTEM_FROM_BUNDLE, bundle_form, warn_deprecated
+from railvib.validation.finite_slab import FiniteSlabTrack
 from railvib.validation.finite_track import FiniteTrack
 from railvib.vehicle.assembly import Vehicle
 

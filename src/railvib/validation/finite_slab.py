@@ -347,6 +347,42 @@ class FiniteSlabTrack:
             c = c + kc[name][1] * mat[matrix]
         return m.tocsc(), c.tocsc(), k.tocsc()
 
+    def slab_dof(self, x: ArrayLike) -> NDArray[np.intp]:
+        """DOF of the slab displacement under each rail position `x` (m; slab nodes)."""
+        return np.array([2 * self._slab_node(float(v)) for v in np.atleast_1d(x)], dtype=np.intp)
+
+    def displacements(
+        self, f: ArrayLike, x_load: float, x_obs: ArrayLike
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Rail and slab displacement at `x_obs` per unit rail force at `x_load`.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+        x_load : float
+            Load position in m (in `nodes_at`).
+        x_obs : array_like
+            Observation positions in m: rail nodes above slab nodes (fasteners).
+
+        Returns
+        -------
+        rail, slab : numpy.ndarray
+            Complex, m/N, ``(n_freq, n_obs)`` each.
+        """
+        from scipy.sparse.linalg import splu
+
+        f = np.atleast_1d(np.asarray(f, dtype=float))
+        rail_dofs, slab_dofs = self.rail_dof(x_obs), self.slab_dof(x_obs)
+        rhs = np.zeros(self.n_dof, dtype=complex)
+        rhs[self.rail_dof(x_load)[0]] = 1.0
+        rail = np.empty((f.size, rail_dofs.size), dtype=complex)
+        slab = np.empty_like(rail)
+        for i, fi in enumerate(f):
+            u = splu(self.dynamic_stiffness(fi)).solve(rhs)
+            rail[i], slab[i] = u[rail_dofs], u[slab_dofs]
+        return rail, slab
+
     def receptance(self, f: ArrayLike, x_load: ArrayLike, x_obs: ArrayLike) -> NDArray:
         """Rail receptance between rail nodes by a direct sparse solve per frequency.
 
