@@ -208,14 +208,12 @@ def honest_finite(system, repeat):
 def slab_ratio(repeat, n=10_000):
     """Ballasted and floating slab against rigid base: track receptance between the wheels."""
     f = np.linspace(0.5, 1000.0, n)
-    presets = {
-        "rigid_base": None,
-        "ballasted": "thompson_ballasted",
-        "floating_slab": "floating_slab_metro",
+    cases = {
+        "rigid_base": railvib.load_preset_case(),
+        "ballasted": railvib.load_preset_case("thompson_ballasted"),
+        "floating_slab": railvib.load_preset_case("floating_slab_metro"),
     }
-    systems = {
-        name: railvib.build_system(railvib.load_preset_case(p)) for name, p in presets.items()
-    }
+    systems = {name: railvib.build_system(case) for name, case in cases.items()}
     times = {name: [] for name in systems}
     for system in systems.values():
         x = system.wheel_positions

@@ -89,8 +89,8 @@ def test_coupled_psds_match_the_finite_slab_track_below_500_hz():
 @pytest.mark.parametrize("name", CASES)
 def test_coupled_psds_match_the_finite_slab_track_to_2_khz(name):
     # the 1e-4 over 1 Hz - 2 kHz: the Hermite error falls as h^4 (2.3e-4 at 16
-    # elements per spacing near 2 kHz, 1.9e-5 at 32) and 480 spacings of margin leave the
-    # far-travelling waves below 1e-6 (measured at 16 elements: 240 and 480 spacings agree
-    # to 1e-6 away from 2 kHz); measured maximum 1.9e-5
+    # elements per spacing near 2 kHz, 1.9e-5 at 32) and 480 spacings of margin hold the
+    # slab's far-travelling waves (measured near 30 Hz: 1.8e-5 with 240 spacings, 2e-7
+    # with 480); measured maximum 1.9e-5
     f = np.geomspace(1.0, 2000.0, 16)
     assert _psd_error(name, f, margin=480, elements=32) < 1e-4
