@@ -115,9 +115,9 @@ def test_the_documented_command_prints_the_documented_rates(tmp_path, monkeypatc
             assert printed[band][column] == value.rstrip("*"), (name, band)
 
 
-def test_a_slab_track_gets_its_receptance_waves_and_decay_without_support_forces(tmp_path):
-    # the slab couples its fasteners' supports: the support forces are not modelled yet,
-    # the rest of the outputs are (they need only receptance and propagation_constants)
+def test_a_slab_track_gets_its_receptance_waves_decay_and_bearing_forces(tmp_path):
+    # receptance, waves and decay need only receptance and propagation_constants; the
+    # support forces are the bearings' (was: left out for every slab track)
     case = tmp_path / "slab.toml"
     case.write_text('preset = "floating_slab_metro"\n')
     out = tmp_path / "out"
@@ -127,7 +127,27 @@ def test_a_slab_track_gets_its_receptance_waves_and_decay_without_support_forces
     f = ds["frequency"].values
     want = track.receptance(f, [ds.attrs["load_position_m"]], ds["position"].values)[:, :, 0]
     np.testing.assert_allclose(ds["receptance"].values, want, rtol=1e-13)
+    for name in ("foundation_force", "bearing_force", "pad_force", "slab_displacement"):
+        assert name in ds, name
+    # the preset's bearings lie under every second fastener (1.2 m apart)
+    np.testing.assert_allclose(np.diff(ds["support"].values), 1.2, rtol=1e-12)
+    assert np.isfinite(ds["decay_rate"].values).all()
+    assert ds.sizes["wave"] == track.propagation_constants(f[:1]).shape[1]
+
+
+def test_a_slab_on_a_continuous_foundation_gets_no_support_forces(tmp_path):
+    # a continuous foundation has no discrete supports: the other outputs only
+    case = tmp_path / "slab.toml"
+    case.write_text(
+        'preset = "wang2017_metro"\n[track]\nmodel = "floating_slab"\nsleeper_spacing = 0.6\n'
+        "slab_bending_stiffness = 1.2e8\nslab_mass_per_length = 1750.0\n"
+        "[track.rail]\nbending_stiffness = 6.62e6\nmass_per_length = 60.64\n"
+        '[track.pad]\nmodel = "hysteretic"\nstiffness_n_per_m = 4e7\nloss_factor = 0.2\n'
+        '[track.foundation]\nmodel = "hysteretic"\nstiffness_n_per_m = 7e6\nloss_factor = 0.2\n'
+    )
+    out = tmp_path / "out"
+    assert main(["track", str(case), "-o", str(out), *FAST, "--no-plots"]) == 0
+    ds = load_netcdf(out / "track.nc")
     assert "support" not in ds.dims
     assert "foundation_force" not in ds
     assert np.isfinite(ds["decay_rate"].values).all()
-    assert ds.sizes["wave"] == track.propagation_constants(f[:1]).shape[1]

@@ -77,12 +77,13 @@ def test_thompson_preset_runs(tmp_path, monkeypatch):
     assert (tmp_path / "out" / "results.nc").is_file()
 
 
-def test_validate_refuses_a_ballasted_track_in_one_line_before_any_work(
+def test_validate_refuses_a_hysteretic_ballasted_track_in_one_line_before_any_work(
     tmp_path, monkeypatch, capsys
 ):
     # was: the reference models were built for a rigid base and the comparison printed
-    # an FE error of 1.3e+02 (relative) and FAILED for a correct result; its Monte Carlo has
-    # no sleeper DOFs yet
+    # an FE error of 1.3e+02 (relative) and FAILED for a correct result; the time-domain
+    # model now has sleeper DOFs, and refuses the preset's hysteretic pad (no exact
+    # time-domain form) by its key before any work
     monkeypatch.chdir(tmp_path)
     (tmp_path / "case.toml").write_text(BASE, encoding="utf-8")
     before = set(tmp_path.rglob("*"))
@@ -90,5 +91,5 @@ def test_validate_refuses_a_ballasted_track_in_one_line_before_any_work(
     captured = capsys.readouterr()
     lines = [s for s in captured.err.splitlines() if s.strip() and not s.startswith("warning:")]
     assert len(lines) == 1, captured.err
-    assert lines[0].startswith("error: track.model = 'ballasted': rigid_base for railvib validate")
+    assert lines[0].startswith("error: track.pad.model = 'hysteretic': spring_damper")
     assert set(tmp_path.rglob("*")) == before

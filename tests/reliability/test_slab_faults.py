@@ -113,18 +113,24 @@ def test_non_passive_foundation_is_refused_before_computing(tmp_path, monkeypatc
     assert set(tmp_path.rglob("*")) == before
 
 
-def test_validate_refuses_a_slab_track_naming_the_model(tmp_path, monkeypatch, capsys):
-    # the reference models of railvib validate have no slab DOFs: refused, not run on the
-    # rigid base
+def test_validate_refuses_a_hysteretic_slab_foundation_naming_its_key(
+    tmp_path, monkeypatch, capsys
+):
+    # the reference models of railvib validate have slab DOFs now; a layer without an
+    # exact time-domain form is refused by its key before any work (was: track.model)
     monkeypatch.chdir(tmp_path)
+    viscous_pad = TRACK.replace(
+        'model = "hysteretic"\nstiffness_n_per_m = 4e7\nloss_factor = 0.2',
+        'model = "spring_damper"\nstiffness_n_per_m = 4e7\ndamping_ns_per_m = 4e4',
+    )
     (tmp_path / "case.toml").write_text(
-        BASE + TRACK.format(model="floating_slab", extra="") + FOUNDATION, encoding="utf-8"
+        BASE + viscous_pad.format(model="floating_slab", extra="") + FOUNDATION, encoding="utf-8"
     )
     before = set(tmp_path.rglob("*"))
     assert main(["validate", "case.toml", "-o", "out"]) == 2
     captured = capsys.readouterr()
-    _one_error_line(captured, "track.model")
-    assert "floating_slab" in captured.err
+    _one_error_line(captured, "track.foundation.model")
+    assert "hysteretic" in captured.err
     assert set(tmp_path.rglob("*")) == before
 
 

@@ -9,8 +9,10 @@ and its PSD is ``|H|^2 S_r``.
 
 The seat of each wheel is the rail seat nearest it (at exactly mid-span, the one ahead).
 Forces are per rail seat of one rail: a ``rail_pair`` track, whose seats stand for both
-rails, is divided by its factor 2. Slab tracks couple their fasteners' supports and do
-not give seat forces yet: they get no support-force variables.
+rails, is divided by its factor 2. A slab track on bearings gives the pad and the bearing
+nearest each wheel under all the contact forces together
+(:meth:`railvib.track.slab.SlabTrack.seat_forces`: the slab couples the seats); one on a
+continuous foundation has no discrete supports and gets no support-force variables.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from numpy.typing import NDArray
 from railvib.coupling import CoupledSystem
 from railvib.grid import trapezoid
 from railvib.pads.scaled import ScaledPad
+from railvib.track.slab import SlabTrack
 
 __all__ = ["seat_positions", "support_force_variables"]
 
@@ -62,19 +65,23 @@ def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, 
     dict of str to xarray.DataArray
         ``psd_support_force`` (``frequency``, ``wheel``, ``layer``), N^2/Hz, and
         ``support_force_rms`` (``wheel``, ``layer``), N, with the ``layer`` coordinate
-        (``pad``, then ``ballast``, ``subgrade`` where the track has them) and
+        (``pad``, then ``ballast``, ``subgrade`` or ``bearing`` where the track has them) and
         ``support_position`` (``wheel``, m); empty for a track without seat forces.
     """
     track = system.track
     f = ds["frequency"].values
-    seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
     contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
-    try:
+    if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
+        try:
+            support = track.seat_forces(f, system.wheel_positions, contact)
+        except NotImplementedError:  # a continuous foundation: no discrete supports
+            return {}
+        seats, layers = support.x, support.force
+    else:
+        seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
         receptance = track.receptance(f, system.wheel_positions, seats)  # (f, seat, wheel)
         rail = np.einsum("fsw,fw->fs", receptance, contact)
         layers = track.seat_response(f, seats, rail).force
-    except NotImplementedError:  # a slab track: its seats are not modelled one by one
-        return {}
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     names = list(layers)
     frf = np.stack([layers[name] for name in names], axis=-1) / per_rail  # (f, wheel, layer)

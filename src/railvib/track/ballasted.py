@@ -48,8 +48,8 @@ BALLASTED_PARAMETERS = (
     Parameter(
         "sleeper_mass_kg",
         "kg",
-        "sleeper mass per rail seat (half a sleeper for one rail); 0: pad and ballast in series",
-        ge=0.0,
+        "sleeper mass per rail seat (half a sleeper for one rail)",
+        gt=0.0,
         le=1e4,
         typical=(100.0, 200.0),
     ),
@@ -137,6 +137,13 @@ class BallastedTrack(PeriodicTrack):
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        if self.sleeper_mass == 0.0:
+            raise CaseError(
+                "track.sleeper_mass_kg",
+                self.sleeper_mass,
+                "> 0 (kg): a ballast layer stands under a sleeper mass (for pad and ballast "
+                "in series without one, give model rigid_base their series stiffness as pad)",
+            )
         check_value(_BY_KEY["sleeper_mass_kg"], self.sleeper_mass, "track.sleeper_mass_kg")
         if not isinstance(self.ballast, PadModel):
             raise CaseError("track.ballast", self.ballast, "a PadModel (N/m)")

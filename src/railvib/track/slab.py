@@ -310,8 +310,98 @@ class SlabTrack(PeriodicTrack):
                     f"reaches {beta * span:.4g} there, beyond {lim:g} (Hz)",
                 )
 
+    def support_positions(self, x: ArrayLike) -> NDArray[np.float64]:
+        """The bearing nearest each rail position `x` (m; the one ahead at a tie), m.
+
+        Parameters
+        ----------
+        x : array_like
+            Positions along the rail, m.
+
+        Returns
+        -------
+        numpy.ndarray
+            Bearing positions, m, shape of `x`.
+
+        Raises
+        ------
+        NotImplementedError
+            A slab on a continuous foundation (it has no discrete supports).
+        """
+        x = np.asarray(x, dtype=float)
+        return np.asarray(
+            [self._supports_around(float(v), 0)[0] for v in x.ravel()], dtype=float
+        ).reshape(x.shape)
+
+    def _supports_around(self, x: float, n: int) -> NDArray[np.float64]:
+        """The bearing nearest `x` (m) and `n` on each side of it, m, increasing."""
+        if self.bearing is None:
+            raise NotImplementedError(
+                f"{type(self).__name__} on a continuous foundation has no discrete supports"
+            )
+        period = self.period
+        cells = np.floor(x / period) + np.arange(-n - 1, n + 2)
+        every = np.sort((cells[:, None] * period + self._bearings()[None, :]).ravel())
+        # the one ahead at a tie: 1e-9 of the period of rounding still counts as a tie
+        nearest = int(np.argmin(np.abs(every - x) - 1e-9 * period * (every > x)))
+        return every[nearest - n : nearest + n + 1]
+
+    def _seat_transfer(
+        self, f: NDArray[np.float64], x_load: NDArray[np.float64], x_seat: NDArray[np.float64]
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], dict[str, NDArray]]:
+        """Rail and slab displacement at bearings `x_seat` per unit rail loads at `x_load`.
+
+        Returns ``(rail, slab, layers)``: m/N, ``(n_freq, n_seat, n_load)`` each, and
+        :meth:`layer_stiffness` at `f`.
+        """
+        self.check_frequencies(f)
+        load_cell, load_x = self._locate(x_load)
+        seat_cell, seat_x = self._locate(x_seat)
+        layers = self.layer_stiffness(f)
+        slab_x = self._slab_nodes()
+        n_rail = self._rail_spans(load_x).size
+        slab_dofs = np.array([2 * (n_rail + _at(slab_x, x)) for x in seat_x], dtype=np.intp)
+        rail = np.empty((f.size, x_seat.size, x_load.size), dtype=np.complex128)
+        slab = np.empty_like(rail)
+        for block in self._blocks(f, load_x):
+            part = {name: k[block] for name, k in layers.items()}
+            cell, rail_nodes = self._cell(f[block], load_x, part)
+            waves = cell_waves(cell)
+            load = (load_cell, _rail_dofs(rail_nodes, load_x))
+            obs = (
+                np.concatenate([seat_cell, seat_cell]),
+                np.concatenate([_rail_dofs(rail_nodes, seat_x), slab_dofs]),
+            )
+            both = cell_receptance(waves, load, obs)
+            rail[block], slab[block] = both[:, : x_seat.size], both[:, x_seat.size :]
+        return rail, slab, layers
+
+    @staticmethod
+    def _bearing_layers(
+        x: NDArray[np.float64],
+        rail: NDArray[np.complex128],
+        slab: NDArray[np.complex128],
+        layers: dict[str, NDArray[np.complex128]],
+    ) -> SupportResponse:
+        """The pad and the bearing at the seats `x` from the rail and slab displacements."""
+        kp, kb = layers["pad"][:, None], layers["bearing"][:, None]
+        compression = {"pad": rail - slab, "bearing": slab}
+        return SupportResponse(
+            x=np.asarray(x, dtype=float),
+            displacement={"rail": rail, "slab": slab},
+            compression=compression,
+            force={"pad": kp * compression["pad"], "bearing": kb * slab},
+            stiffness={"pad": layers["pad"], "bearing": layers["bearing"]},
+            foundation="bearing",
+        )
+
     def support_response(self, f: ArrayLike, x_load: float, n_supports: int) -> SupportResponse:
-        """Not modelled for a slab track yet: the slab couples the fasteners' supports.
+        """The bearings nearest a unit rail load: rail and slab displacements, layer forces.
+
+        The supports are the bearings (every one carries a fastener above it): the nearest
+        to `x_load` and `n_supports` on each side. The rail and slab displacements there
+        come from the cell's solution (the slab's DOF at the bearing), the pad carries
+        ``K_p (w_r - w_s)``, the bearing ``K_b w_s`` to the ground.
 
         Parameters
         ----------
@@ -320,20 +410,71 @@ class SlabTrack(PeriodicTrack):
         x_load : float
             Position of the unit load along the rail, m.
         n_supports : int
-            Rail seats on each side of the one nearest the load.
+            Bearings on each side of the one nearest the load (>= 0).
+
+        Returns
+        -------
+        SupportResponse
+            Masses ``"rail"``, ``"slab"``; layers ``"pad"``, ``"bearing"`` (the foundation).
 
         Raises
         ------
         NotImplementedError
-            Always (``railvib track`` then writes the receptances, waves and decay rate
-            without the support forces).
+            A slab on a continuous foundation (no discrete supports: ``railvib track`` then
+            writes the receptances, waves and decay rate without support forces).
         """
-        raise NotImplementedError(f"{type(self).__name__} does not give its support forces yet")
+        if not np.isfinite(x_load):
+            raise CaseError("x_load", x_load, "a finite position (m)")
+        if int(n_supports) != n_supports or n_supports < 0:
+            raise CaseError("n_supports", n_supports, "an integer >= 0")
+        f = _as_freq(f)
+        x = self._supports_around(float(x_load), int(n_supports))
+        rail, slab, layers = self._seat_transfer(f, np.array([float(x_load)]), x)
+        return self._bearing_layers(x, rail[:, :, 0], slab[:, :, 0], layers)
+
+    def seat_forces(
+        self, f: ArrayLike, x_load: ArrayLike, loads: NDArray[np.complex128]
+    ) -> SupportResponse:
+        """The bearing nearest each load under all the loads together (the coupled run).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies, Hz, ``(n_freq,)``.
+        x_load : array_like
+            Positions of the rail loads (the wheels), m, ``(n_load,)``.
+        loads : numpy.ndarray
+            Complex rail loads, N (or N per unit input), ``(n_freq, n_load)``.
+
+        Returns
+        -------
+        SupportResponse
+            At the bearing nearest each load, ``(n_freq, n_load)``: in the units of
+            `loads` for forces, m per unit of `loads` for displacements.
+
+        Raises
+        ------
+        NotImplementedError
+            A slab on a continuous foundation (no discrete supports).
+        """
+        f = _as_freq(f)
+        x_load = np.atleast_1d(np.asarray(x_load, dtype=float))
+        seats = self.support_positions(x_load)
+        rail, slab, layers = self._seat_transfer(f, x_load, seats)
+        return self._bearing_layers(
+            seats,
+            np.einsum("fsl,fl->fs", rail, loads),
+            np.einsum("fsl,fl->fs", slab, loads),
+            layers,
+        )
 
     def seat_response(
         self, f: ArrayLike, x: NDArray[np.float64], rail: NDArray[np.complex128]
     ) -> SupportResponse:
-        """Not modelled for a slab track yet: its seats share the slab (NotImplementedError).
+        """Not defined for a slab track: its seats share the slab (NotImplementedError).
+
+        The slab's displacement at a seat is not a function of the rail's there alone; the
+        coupled run takes :meth:`seat_forces`.
 
         Parameters
         ----------
@@ -347,9 +488,9 @@ class SlabTrack(PeriodicTrack):
         Raises
         ------
         NotImplementedError
-            Always (a run then gives no support-force variables).
+            Always.
         """
-        raise NotImplementedError(f"{type(self).__name__} does not give its seat forces yet")
+        raise NotImplementedError(f"{type(self).__name__}: use seat_forces (the slab couples)")
 
     def support_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
         """Not defined for a slab track: the slab couples the fasteners (raises CaseError).

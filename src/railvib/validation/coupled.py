@@ -30,7 +30,9 @@ from railvib.pads.base import PadModel
 from railvib.response import FRF
 from railvib.track.ballasted import BallastedTrack  # its layers only, not its solver
 from railvib.track.periodic import PeriodicTrack, Rail  # the parameter records only, not the solver
+from railvib.track.slab import FloatingSlabTrack, SlabTrack, UnitSlabTrack  # parameters only
 from railvib.validation._legacy import SYSTEM_FROM_BUNDLE, bundle_form, warn_deprecated
+from railvib.validation.finite_slab import FiniteSlabTrack
 from railvib.validation.finite_track import FiniteTrack
 from railvib.vehicle.assembly import Vehicle
 
@@ -49,8 +51,9 @@ class FiniteCoupledSystem:
     ----------
     vehicle : Vehicle
         Pitch-plane vehicle, wheels front to back.
-    track : FiniteTrack
-        Finite track with nodes at the wheel positions.
+    track : FiniteTrack or FiniteSlabTrack
+        Finite track with nodes at the wheel positions (a rail on pads, on sleepers and
+        ballast, or on a slab: every layer as explicit DOFs).
     contact_stiffness : float
         Linear Hertz stiffness k_H per contact, N/m (> 0).
     leading_wheel_position : float
@@ -60,7 +63,7 @@ class FiniteCoupledSystem:
     """
 
     vehicle: Vehicle
-    track: FiniteTrack
+    track: FiniteTrack | FiniteSlabTrack
     contact_stiffness: float
     leading_wheel_position: float
     speed: float
@@ -70,7 +73,7 @@ class FiniteCoupledSystem:
             raise CaseError("contact.stiffness", self.contact_stiffness, "must be > 0 (N/m)")
         if not (np.isfinite(self.speed) and self.speed > 0):
             raise CaseError("speed", self.speed, "must be > 0 (m/s)")
-        self.track.node_index(self.wheel_positions)  # raises if a wheel is not a node
+        self.track.w_dof(self.wheel_positions)  # raises if a wheel is not a node
 
     @classmethod
     def from_system(
@@ -85,9 +88,11 @@ class FiniteCoupledSystem:
         """The finite-track counterpart of the symplectic path's system description.
 
         Only the parameters of `system` are read (vehicle; rail, pad, sleeper spacing
-        and pad temperature of ``system.track``, and a ballasted track's sleeper, ballast,
-        ballast mass and subgrade, which become explicit DOFs; contact stiffness, leading
-        wheel position and speed); nothing of the periodic-track solver is called.
+        and pad temperature of ``system.track``, a ballasted track's sleeper, ballast,
+        ballast mass and subgrade, which become explicit DOFs, a slab track's slab,
+        foundation or bearings and joints, which become a beam of its own on springs
+        (:class:`~railvib.validation.finite_slab.FiniteSlabTrack`); contact stiffness,
+        leading wheel position and speed); nothing of the periodic-track solver is called.
 
         Parameters
         ----------
@@ -108,6 +113,18 @@ class FiniteCoupledSystem:
         FiniteCoupledSystem
         """
         track = system.track
+        if isinstance(track, SlabTrack):
+            x = system.leading_wheel_position - system.vehicle.wheel_offsets
+            finite = _finite_slab(
+                track, x, margin_spans, elements_per_span, absorber_spans, absorber_damping
+            )
+            return cls(
+                system.vehicle,
+                finite,
+                system.contact_stiffness,
+                system.leading_wheel_position,
+                system.speed,
+            )
         return _finite_system(
             system.vehicle,
             track.rail,
@@ -303,6 +320,60 @@ def _finite_system(
         **layers,
     )
     return FiniteCoupledSystem(vehicle, track, contact_stiffness, leading_wheel_position, speed)
+
+
+def _finite_slab(
+    track: SlabTrack,
+    positions: NDArray[np.float64],
+    margin_spans: int,
+    elements_per_span: int,
+    absorber_spans: int,
+    absorber_damping: float,
+) -> FiniteSlabTrack:
+    """The finite slab track of `track`'s parameters around `positions` (m).
+
+    The rail and slab run `margin_spans` fastener spacings beyond the outermost positions;
+    the absorbers fill `absorber_spans` spacings at each end, the slab's dashpots
+    `absorber_damping` times the slab's mass per length over the rail's (N s/m): the same
+    decay per wavelength for the heavier beam (floating_slab_metro, 240 spacings of margin
+    with 200 absorbing at 2e5 N s/m: 1.3e-1 at 1 kHz with the rail's dashpots under the
+    slab, 5.4e-3 with the slab's).
+    """
+    d = track.sleeper_spacing
+    unit: dict[str, Any] = {}
+    if isinstance(track, UnitSlabTrack):
+        unit = {
+            "slab_length": track.slab_length,
+            "fasteners_per_slab": track.fasteners_per_slab,
+            "joint_shear_stiffness": track.joint_shear_stiffness,
+            "joint_bending_stiffness": track.joint_bending_stiffness,
+        }
+    elif isinstance(track, FloatingSlabTrack):
+        unit = {"bearing_spacing_fasteners": track.bearing_spacing_fasteners}
+    return FiniteSlabTrack(
+        track.rail,
+        track.pad,
+        d,
+        track.slab_bending_stiffness,
+        track.slab_mass_per_length,
+        track.slab_loss_factor,
+        x_min=(np.floor(positions.min() / d) - margin_spans) * d,
+        x_max=(np.ceil(positions.max() / d) + margin_spans) * d,
+        foundation=track.foundation,
+        bearing=track.bearing,
+        elements_per_span=elements_per_span,
+        nodes_at=tuple(float(v) for v in positions),
+        absorber_length=absorber_spans * d,
+        absorber_damping=absorber_damping,
+        slab_absorber_damping=absorber_damping * _slab_to_rail_mass(track),
+        pad_temperature=track.pad_temperature,
+        **unit,
+    )
+
+
+def _slab_to_rail_mass(track: SlabTrack) -> float:
+    """Slab mass per length over the rail's (-)."""
+    return track.slab_mass_per_length / track.rail.mass_per_length
 
 
 def _layers(track: PeriodicTrack) -> dict[str, Any]:

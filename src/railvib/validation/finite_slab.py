@@ -31,6 +31,7 @@ from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.track.periodic import Rail
 from railvib.validation.finite_track import hermite_element_matrices
+from railvib.validation.scope import check_rail, viscous_layer
 
 __all__ = ["FiniteSlabTrack"]
 
@@ -75,6 +76,9 @@ class FiniteSlabTrack:
     absorber_damping : float
         The dashpots' damping at the outermost fastener, N s/m; it grows quadratically
         from 0 at the inner edge of each absorber.
+    slab_absorber_damping : float, optional
+        The slab's dashpots there, N s/m; None: `absorber_damping` (a slab far heavier than
+        the rail needs proportionally more to damp its waves as fast).
     pad_temperature : float, optional
         Temperature in degC passed to the pad, foundation and bearing models.
     """
@@ -99,6 +103,7 @@ class FiniteSlabTrack:
     absorber_length: float = 0.0
     absorber_damping: float = 0.0
     pad_temperature: float | None = None
+    slab_absorber_damping: float | None = None
 
     def __post_init__(self) -> None:
         if self.rail.is_timoshenko:
@@ -172,6 +177,10 @@ class FiniteSlabTrack:
         """Number of DOFs: w and theta at every rail and slab node."""
         return 2 * (self.rail_nodes.size + sum(x.size for x in self.slab_nodes))
 
+    def w_dof(self, x: ArrayLike) -> NDArray[np.intp]:
+        """DOF of the rail displacement at each position `x` (m), as :meth:`rail_dof`."""
+        return self.rail_dof(x)
+
     def rail_dof(self, x: ArrayLike) -> NDArray[np.intp]:
         """DOF of the rail displacement at each position `x` (m; each must be a node)."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
@@ -240,12 +249,15 @@ class FiniteSlabTrack:
                 vals.append(np.array([value, -value, -value]))
 
         ramp = self._absorber_profile()
+        slab_share = 1.0
+        if self.slab_absorber_damping is not None and self.absorber_damping > 0:
+            slab_share = self.slab_absorber_damping / self.absorber_damping
         for x, extra in zip(self.fasteners, ramp, strict=True):
             rail, slab = int(self.rail_dof(x)[0]), 2 * self._slab_node(x)
             spring("pads", rail, slab, 1.0)
             if extra > 0:
                 spring("absorber", rail, None, extra)
-                spring("absorber", slab, None, extra)
+                spring("absorber", slab, None, extra * slab_share)
         d, every = self.fastener_spacing, self.bearing_spacing_fasteners
         for x in self.fasteners:
             on_bearing = self.slab_length is not None or round(x / d) % every == 0
@@ -295,6 +307,81 @@ class FiniteSlabTrack:
             + 1j * omega * mat["absorber"]
         )
         return out.tocsc()
+
+    def time_domain_matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
+        """Real ``(M, C, K)`` for time integration (viscous layers, no beam loss factor).
+
+        The same DOFs and springs as :meth:`dynamic_stiffness`: the consistent Winkler
+        matrix carries the foundation's ``k_f`` and ``c_f`` per metre of slab.
+
+        Returns
+        -------
+        tuple of scipy.sparse.csc_matrix
+            Mass (kg), damping (N s/m) and stiffness (N/m) matrices.
+
+        Raises
+        ------
+        CaseError
+            ``track.rail.loss_factor`` or ``track.slab_loss_factor`` not 0 (no hysteretic
+            beam in the time domain), or ``track.<layer>.model`` of a pad, foundation or
+            bearing that is not a spring-damper.
+        """
+        check_rail(self.rail, time_domain=True)
+        if self.slab_loss_factor != 0.0:
+            raise CaseError(
+                "track.slab_loss_factor",
+                self.slab_loss_factor,
+                "0 for the time-domain Monte Carlo: it has no hysteretic slab",
+            )
+        mat = self._matrices
+        layers = {"pad": self.pad, "foundation": self.foundation, "bearing": self.bearing}
+        kc = {
+            name: viscous_layer(model, f"track.{name}") if model is not None else (0.0, 0.0)
+            for name, model in layers.items()
+        }
+        m = mat["mass_rail"] + self.slab_mass_per_length * mat["mass_slab"]
+        k = mat["k_rail"] + mat["k_slab"] + mat["joints"]
+        c = mat["absorber"]
+        for name, matrix in (("pad", "pads"), ("foundation", "mass_slab"), ("bearing", "bearings")):
+            k = k + kc[name][0] * mat[matrix]
+            c = c + kc[name][1] * mat[matrix]
+        return m.tocsc(), c.tocsc(), k.tocsc()
+
+    def slab_dof(self, x: ArrayLike) -> NDArray[np.intp]:
+        """DOF of the slab displacement under each rail position `x` (m; slab nodes)."""
+        return np.array([2 * self._slab_node(float(v)) for v in np.atleast_1d(x)], dtype=np.intp)
+
+    def displacements(
+        self, f: ArrayLike, x_load: float, x_obs: ArrayLike
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Rail and slab displacement at `x_obs` per unit rail force at `x_load`.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz.
+        x_load : float
+            Load position in m (in `nodes_at`).
+        x_obs : array_like
+            Observation positions in m: rail nodes above slab nodes (fasteners).
+
+        Returns
+        -------
+        rail, slab : numpy.ndarray
+            Complex, m/N, ``(n_freq, n_obs)`` each.
+        """
+        from scipy.sparse.linalg import splu
+
+        f = np.atleast_1d(np.asarray(f, dtype=float))
+        rail_dofs, slab_dofs = self.rail_dof(x_obs), self.slab_dof(x_obs)
+        rhs = np.zeros(self.n_dof, dtype=complex)
+        rhs[self.rail_dof(x_load)[0]] = 1.0
+        rail = np.empty((f.size, rail_dofs.size), dtype=complex)
+        slab = np.empty_like(rail)
+        for i, fi in enumerate(f):
+            u = splu(self.dynamic_stiffness(fi)).solve(rhs)
+            rail[i], slab[i] = u[rail_dofs], u[slab_dofs]
+        return rail, slab
 
     def receptance(self, f: ArrayLike, x_load: ArrayLike, x_obs: ArrayLike) -> NDArray:
         """Rail receptance between rail nodes by a direct sparse solve per frequency.

@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.track.periodic import Rail
-from railvib.validation.scope import check_pad, check_rail, viscous_pad
+from railvib.validation.scope import check_pad, check_rail, viscous_layer
 
 __all__ = ["FiniteTrack", "hermite_element_matrices"]
 
@@ -379,7 +379,12 @@ class FiniteTrack:
         return (diagonal + layers).tocsc()
 
     def time_domain_matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
-        """Real ``(M, C, K)`` for time integration (viscous pads only).
+        """Real ``(M, C, K)`` for time integration (viscous pads and layers only).
+
+        A ballasted track's sleepers (and ballast masses) are explicit DOFs, as in
+        :meth:`pad_matrix`: the pad spring-damper between each rail sleeper node and its
+        sleeper of mass ``m_s``, the ballast from the sleeper to the ground (or to the
+        ballast mass of ``m_b`` on the subgrade); the absorber from the rail to the ground.
 
         Returns
         -------
@@ -389,22 +394,58 @@ class FiniteTrack:
         Raises
         ------
         CaseError
-            If the pad is not a spring-damper (or the two-rail doubling of one) or the
-            rail has a loss factor, which have no exact time-domain counterpart here.
+            If the pad, ballast or subgrade is not a spring-damper (or the two-rail
+            doubling of one) or the rail has a loss factor, which have no exact
+            time-domain counterpart here.
         """
-        if self.ballast is not None:
-            raise CaseError(
-                "finite_track.ballast", "given", "none: the time-domain model is rigid-base only"
-            )
         check_pad(self.pad)
         check_rail(self.rail, time_domain=True)
-        viscous = viscous_pad(self.pad)
-        assert viscous is not None, "check_pad accepts viscous pads only"
-        k_pad, c_pad = viscous
-        n_sl = self.sleeper_dofs.size
-        k = self.rail_stiffness_matrix + self._sleeper_diagonal(np.full(n_sl, float(k_pad)))
-        c = self._sleeper_diagonal(float(c_pad) + self.absorber_profile)
-        return self.mass_matrix, c, k
+        k_pad, c_pad = viscous_layer(self.pad, "track.pad")
+        rail = self.sleeper_dofs
+        n_sl = rail.size
+        layers = sp.csc_matrix((self.n_dof, self.n_dof))
+        k_lay, c_lay, m_lay = layers, layers, layers
+        if self.ballast is None:
+            k_lay = self._sleeper_diagonal(np.full(n_sl, k_pad))
+            c_lay = self._sleeper_diagonal(np.full(n_sl, c_pad))
+        else:
+            sleeper = 2 * self.nodes.size + np.arange(n_sl)
+            chain = [(rail, sleeper, (k_pad, c_pad))]
+            ground = [(sleeper, viscous_layer(self.ballast, "track.ballast"))]
+            masses = [(sleeper, self.sleeper_mass)]
+            if self.subgrade is not None:
+                ballast = sleeper + n_sl
+                chain.append((sleeper, ballast, ground.pop()[1]))
+                ground.append((ballast, viscous_layer(self.subgrade, "track.subgrade")))
+                masses.append((ballast, self.ballast_mass))
+            k_lay = self._springs(chain, ground, 0)
+            c_lay = self._springs(chain, ground, 1)
+            m_lay = self._springs([], [(dofs, (mass, mass)) for dofs, mass in masses], 0)
+        k = self.rail_stiffness_matrix + k_lay
+        c = c_lay + self._sleeper_diagonal(self.absorber_profile)
+        return (self.mass_matrix + m_lay).tocsc(), c.tocsc(), k.tocsc()
+
+    def _springs(
+        self,
+        chain: list[tuple[NDArray[np.intp], NDArray[np.intp], tuple[float, float]]],
+        ground: list[tuple[NDArray[np.intp], tuple[float, float]]],
+        part: int,
+    ) -> sp.csc_matrix:
+        """Real springs (``part`` 0: stiffness, 1: damping) between DOF pairs and to the ground."""
+        rows, cols, vals = [], [], []
+        for a, b, values in chain:
+            v = np.full(a.size, values[part])
+            rows += [a, b, a, b]
+            cols += [a, b, b, a]
+            vals += [v, v, -v, -v]
+        for a, values in ground:
+            rows.append(a)
+            cols.append(a)
+            vals.append(np.full(a.size, values[part]))
+        return sp.csc_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(self.n_dof, self.n_dof),
+        )
 
     def dynamic_stiffness(self, f: float) -> sp.csc_matrix:
         """``K (1 + i eta_r) + K_pad(f) - omega^2 M`` at one frequency `f` (Hz), complex, N/m."""

@@ -2,9 +2,10 @@
 
 The finite track is an Euler-Bernoulli rail; the time-domain Monte Carlo needs,
 besides, elements with an exact time-domain form: a viscous pad ``K* = k + i omega c``
-(also as the two-rail doubling of ``rail_model = "rail_pair"``) and no rail loss
-factor. :func:`check_scope` refuses any other case at once, naming the case-file
-key and the model the user wrote (``fractional_zener``, not the internal
+(also as the two-rail doubling of ``rail_model = "rail_pair"``), viscous ballast,
+subgrade, slab foundation or bearings, and no rail or slab loss factor.
+:func:`check_scope` refuses any other case at once, naming the case-file key and the
+model the user wrote (``fractional_zener``, not the internal
 ``temperature_shifted`` wrapper of its ``[track.pad.tts]`` table).
 """
 
@@ -17,11 +18,17 @@ from railvib.pads.scaled import ScaledPad
 from railvib.pads.simple import SpringDamper
 from railvib.pads.tts import TemperatureShifted
 from railvib.track.ballasted import BallastedTrack
-from railvib.track.base import TRACKS
 from railvib.track.periodic import Rail
 from railvib.track.slab import SlabTrack
 
-__all__ = ["check_pad", "check_rail", "check_scope", "pad_model_name", "viscous_pad"]
+__all__ = [
+    "check_pad",
+    "check_rail",
+    "check_scope",
+    "pad_model_name",
+    "viscous_layer",
+    "viscous_pad",
+]
 
 
 def pad_model_name(pad: PadModel) -> str:
@@ -63,6 +70,38 @@ def viscous_pad(pad: PadModel) -> tuple[float, float] | None:
     if isinstance(pad, SpringDamper):
         return float(pad.stiffness_n_per_m), float(pad.damping_ns_per_m)
     return None
+
+
+def viscous_layer(model: PadModel, field: str) -> tuple[float, float]:
+    """``(k, c)`` of a viscous layer for the time-domain model, or a CaseError.
+
+    Parameters
+    ----------
+    model : PadModel
+        A pad, ballast, subgrade, slab foundation or bearing model.
+    field : str
+        Its case-file table (``track.ballast``), named in the error.
+
+    Returns
+    -------
+    (float, float)
+        Stiffness (N/m; N/m^2 for a foundation) and damping (N s/m; N s/m^2).
+
+    Raises
+    ------
+    CaseError
+        ``<field>.model = '<the user's model>'`` for any model but a spring-damper.
+    """
+    viscous = viscous_pad(model)
+    if viscous is None:
+        raise CaseError(
+            f"{field}.model",
+            pad_model_name(model),
+            "spring_damper for railvib validate: its time-domain Monte Carlo needs a "
+            "viscous layer (K* = k + i omega c); other models have no exact time-domain "
+            "form there",
+        )
+    return viscous
 
 
 def check_rail(rail: Rail, time_domain: bool) -> None:
@@ -124,32 +163,33 @@ def check_scope(system: CoupledSystem) -> None:
     Parameters
     ----------
     system : CoupledSystem
-        The vehicle on the periodic track (its rail and pad are checked).
+        The vehicle on the periodic track (its rail, pad and layers are checked).
 
     Raises
     ------
     CaseError
         ``track.rail.shear_stiffness`` for a Timoshenko rail, ``track.rail.loss_factor``
         for a rail loss factor, ``track.pad.model`` (the user's model name) for a pad
-        that is not viscous, ``track.model`` for a slab or ballasted track (the
-        time-domain model has no slab or sleeper DOFs).
+        that is not viscous, and likewise ``track.ballast.model``, ``track.subgrade.model``,
+        ``track.foundation.model`` or ``track.bearing.model`` for a layer of a ballasted or
+        slab track, ``track.slab_loss_factor`` for a hysteretic slab.
     """
-    if isinstance(system.track, SlabTrack):
-        raise CaseError(
-            "track.model",
-            next((m.name for m in TRACKS if m.cls is type(system.track)), "a slab track"),
-            "rigid_base for railvib validate: its finite-track and time-domain reference "
-            "models have no slab DOFs (the slab tracks are validated against "
-            "railvib.validation.finite_slab.FiniteSlabTrack in the test suite)",
-        )
-    if isinstance(system.track, BallastedTrack):
-        raise CaseError(
-            "track.model",
-            "ballasted",
-            "rigid_base for railvib validate: its time-domain Monte Carlo has no sleeper "
-            "DOFs yet (the ballasted track's coupled PSDs are checked against the finite "
-            "track with explicit sleepers, railvib.validation.finite_track_frf, in the test "
-            "suite)",
-        )
-    check_rail(system.track.rail, time_domain=True)
-    check_pad(system.track.pad)
+    track = system.track
+    check_rail(track.rail, time_domain=True)
+    check_pad(track.pad)
+    if isinstance(track, SlabTrack):
+        if track.slab_loss_factor != 0.0:
+            raise CaseError(
+                "track.slab_loss_factor",
+                track.slab_loss_factor,
+                "0 for railvib validate: the time-domain Monte Carlo has no hysteretic "
+                "slab (damp it through [track.foundation] or [track.bearing])",
+            )
+        layers = {"foundation": track.foundation, "bearing": track.bearing}
+    elif isinstance(track, BallastedTrack):
+        layers = {"ballast": track.ballast, "subgrade": track.subgrade}
+    else:
+        layers = {}
+    for name, model in layers.items():
+        if model is not None:
+            viscous_layer(model, f"track.{name}")

@@ -21,7 +21,7 @@ from railvib.outputs import criteria_lines
 from railvib.outputs.supports import seat_positions, support_force_variables
 from railvib.pads import Hysteretic
 from railvib.pads.scaled import ScaledPad
-from railvib.track import BallastedTrack, PeriodicTrack, Rail
+from railvib.track import BallastedTrack, FloatingSlabTrack, PeriodicTrack, Rail
 from railvib.validation.finite_track import FiniteTrack
 
 RAIL = Rail(6.42e6, 60.0, 0.02)  # a small rail loss, so the waves die out in the finite model
@@ -105,10 +105,23 @@ def test_a_rail_pair_reports_one_rails_seat():
     np.testing.assert_allclose(single["psd_support_force"].values[:, :, 0], whole, rtol=2 * RTOL)
 
 
-def test_a_slab_track_gives_no_seat_forces():
-    # its fasteners share the slab: the seat relations of a rail seat do not apply yet
+def test_a_slab_track_gives_its_bearing_forces_and_a_continuous_foundation_none():
+    # the bearings' forces come from the slab under all wheels together (checked against
+    # the finite slab track in tests/validation/test_track14_slab_supports.py); a
+    # continuous foundation has no discrete supports
     slab = build_system(case_from_dict({"preset": "floating_slab_metro"}))
-    assert support_force_variables(slab, _dataset()) == {}
+    got = support_force_variables(slab, _dataset())
+    assert list(got["psd_support_force"]["layer"].values) == ["pad", "bearing"]
+    continuous = FloatingSlabTrack(
+        Rail(6.42e6, 60.0),
+        PAD,
+        D,
+        slab_bending_stiffness=1.2e8,
+        slab_mass_per_length=1750.0,
+        foundation=Hysteretic(7e6, 0.2),
+    )
+    system = SimpleNamespace(track=continuous, wheel_positions=WHEELS)
+    assert support_force_variables(system, _dataset()) == {}
 
 
 def test_a_run_holds_the_seat_forces_their_levels_and_a_summary_line():
