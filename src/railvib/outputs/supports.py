@@ -23,7 +23,7 @@ from railvib.coupling import CoupledSystem
 from railvib.grid import trapezoid
 from railvib.pads.scaled import ScaledPad
 
-__all__ = ["seat_positions", "support_force_variables"]
+__all__ = ["gives_seat_forces", "seat_positions", "support_force_variables"]
 
 
 def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDArray[np.float64]:
@@ -46,7 +46,31 @@ def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDAr
     return np.floor(np.asarray(wheel_positions, dtype=float) / spacing + 0.5 + 1e-9) * spacing
 
 
-def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, xr.DataArray]:
+def gives_seat_forces(system: CoupledSystem) -> bool:
+    """Whether the track of `system` gives the forces through its rail seats (not a slab's).
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The system (its track).
+
+    Returns
+    -------
+    bool
+        False where the track's ``seat_response`` raises NotImplementedError.
+    """
+    track = system.track
+    seat = seat_positions(system.wheel_positions[:1], track.sleeper_spacing)
+    try:
+        track.seat_response(np.ones(1), seat, np.zeros((1, 1), dtype=np.complex128))
+    except NotImplementedError:
+        return False
+    return True
+
+
+def support_force_variables(
+    system: CoupledSystem, ds: xr.Dataset, rail: NDArray[np.complex128] | None = None
+) -> dict[str, xr.DataArray]:
     """PSD and RMS of the force in each layer of the seat under each wheel.
 
     Parameters
@@ -56,6 +80,11 @@ def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, 
     ds : xarray.Dataset
         The result as built in memory: ``frf_force`` (complex contact force per metre of
         irregularity, N/m) and ``irregularity_psd`` (m^2/Hz) over ``frequency``.
+    rail : numpy.ndarray, optional
+        The rail displacement at the seats (:func:`seat_positions`) per metre of
+        irregularity, ``(frequency, wheel)``, m/m, where the solve gave it
+        (``CoupledSystem.frf_blocks(observe=seats)``: ``FRF.rail_observed``); default:
+        from the contact forces through the track's receptance.
 
     Returns
     -------
@@ -68,13 +97,13 @@ def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, 
     track = system.track
     f = ds["frequency"].values
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
-    contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
-    try:
+    if not gives_seat_forces(system):  # a slab track: its seats are not modelled one by one
+        return {}
+    if rail is None:
+        contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
         receptance = track.receptance(f, system.wheel_positions, seats)  # (f, seat, wheel)
         rail = np.einsum("fsw,fw->fs", receptance, contact)
-        layers = track.seat_response(f, seats, rail).force
-    except NotImplementedError:  # a slab track: its seats are not modelled one by one
-        return {}
+    layers = track.seat_response(f, seats, rail).force
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     names = list(layers)
     frf = np.stack([layers[name] for name in names], axis=-1) / per_rail  # (f, wheel, layer)
