@@ -19,7 +19,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib.coupling import CoupledSystem
+from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
 from railvib.grid import trapezoid
 from railvib.pads.scaled import ScaledPad
 
@@ -99,15 +99,25 @@ def support_force_variables(
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
     if not gives_seat_forces(system):  # a slab track: its seats are not modelled one by one
         return {}
-    if rail is None:
-        contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
-        receptance = track.receptance(f, system.wheel_positions, seats)  # (f, seat, wheel)
-        rail = np.einsum("fsw,fw->fs", receptance, contact)
-    layers = track.seat_response(f, seats, rail).force
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
-    names = list(layers)
-    frf = np.stack([layers[name] for name in names], axis=-1) / per_rail  # (f, wheel, layer)
-    psd = np.abs(frf) ** 2 * ds["irregularity_psd"].values[:, None, None]
+    s_r = ds["irregularity_psd"].values
+    names: list[str] = []
+    psd = np.empty((f.size, seats.size, 0))
+    # block by block, so the temporaries are a block's whatever the grid
+    for start in range(0, f.size, FREQUENCY_BLOCK):
+        sl = slice(start, start + FREQUENCY_BLOCK)
+        if rail is None:
+            contact = np.asarray(ds["frf_force"].values[sl], dtype=np.complex128)
+            receptance = track.receptance(f[sl], system.wheel_positions, seats)  # (f, seat, w)
+            rail_block = np.einsum("fsw,fw->fs", receptance, contact)
+        else:
+            rail_block = rail[sl]
+        layers = track.seat_response(f[sl], seats, rail_block).force
+        if not names:
+            names = list(layers)
+            psd = np.empty((f.size, seats.size, len(names)))  # (frequency, wheel, layer)
+        for i, name in enumerate(names):
+            psd[sl, :, i] = np.abs(layers[name] / per_rail) ** 2 * s_r[sl, None]
     coords = {
         "layer": ("layer", names, {"long_name": "layer of the rail seat, top down"}),
         "support_position": (
