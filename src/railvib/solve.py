@@ -138,7 +138,7 @@ def run_system(
     settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
     # the rail at the seats under the wheels from the same track solve as the contact's
     seats = None
-    if gives_seat_forces(system):
+    if gives_seat_forces(system, f):
         seats = seat_positions(system.wheel_positions, system.track.sleeper_spacing)
     seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):

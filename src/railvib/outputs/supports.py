@@ -46,13 +46,15 @@ def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDAr
     return np.floor(np.asarray(wheel_positions, dtype=float) / spacing + 0.5 + 1e-9) * spacing
 
 
-def gives_seat_forces(system: CoupledSystem) -> bool:
+def gives_seat_forces(system: CoupledSystem, f: NDArray[np.float64]) -> bool:
     """Whether the track of `system` gives the forces through its rail seats (not a slab's).
 
     Parameters
     ----------
     system : CoupledSystem
         The system (its track).
+    f : numpy.ndarray
+        The run's frequencies, Hz (the first is tried: a tabulated layer's range holds it).
 
     Returns
     -------
@@ -62,7 +64,7 @@ def gives_seat_forces(system: CoupledSystem) -> bool:
     track = system.track
     seat = seat_positions(system.wheel_positions[:1], track.sleeper_spacing)
     try:
-        track.seat_response(np.ones(1), seat, np.zeros((1, 1), dtype=np.complex128))
+        track.seat_response(f[:1], seat, np.zeros((1, 1), dtype=np.complex128))
     except NotImplementedError:
         return False
     return True
@@ -97,7 +99,7 @@ def support_force_variables(
     track = system.track
     f = ds["frequency"].values
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
-    if not gives_seat_forces(system):  # a slab track: its seats are not modelled one by one
+    if not gives_seat_forces(system, f):  # a slab track: its seats are not modelled one by one
         return {}
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     s_r = ds["irregularity_psd"].values
