@@ -127,7 +127,9 @@ class CoupledSystem:
             wheels=self.vehicle.wheel_names,
         )
 
-    def frf_blocks(self, f: ArrayLike, block: int | None = None) -> Iterator[tuple[slice, FRF]]:
+    def frf_blocks(
+        self, f: ArrayLike, block: int | None = None, observe: ArrayLike | None = None
+    ) -> Iterator[tuple[slice, FRF]]:
         """The responses of :meth:`frf` block by block, so memory is bounded by the block.
 
         Parameters
@@ -137,6 +139,10 @@ class CoupledSystem:
         block : int, optional
             Frequencies per block (default :data:`FREQUENCY_BLOCK`, or
             :data:`FREQUENCY_BLOCK_MANY_WHEELS` above :data:`DENSE_WHEELS` wheels).
+        observe : array_like, optional
+            Further points of the rail, m (e.g. the rail seats under the wheels): their
+            receptance from the wheels is taken from the same waves as the contact's, one
+            track solve per block, and their displacement is ``FRF.rail_observed``.
 
         Yields
         ------
@@ -151,17 +157,23 @@ class CoupledSystem:
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
         # one case's run uses the compiled kernel only where this process has loaded it
         compiled = use_compiled(f.size, load=False)
+        extra = np.empty(0) if observe is None else np.atleast_1d(np.asarray(observe, dtype=float))
+        x_obs = np.concatenate([x, extra])  # the wheels first: their receptance as without
         for start in range(0, max(f.size, 1), step):
             sl = slice(start, min(start + step, f.size))
             fb = f[sl]
             if compiled:
-                rec = track_receptances(fb, [self.track], [x], compiled=True)[0]
+                rec_obs = _compiled_receptance(self.track, fb, x, x_obs)
             else:
-                rec = self.track.receptance(fb, x, x)
+                rec_obs = self.track.receptance(fb, x, x_obs)
+            rec = np.ascontiguousarray(rec_obs[:, : x.size]) if extra.size else rec_obs
             v = excitation_vector(fb, delays)
             u_v, force, rail = coupled_response(
                 self.vehicle.condensed_to_wheels(fb), rec, self.contact_stiffness, v[..., None]
             )
+            observed = None
+            if observe is not None:
+                observed = np.einsum("fow,fw->fo", rec_obs[:, x.size :], force[..., 0])
             yield (
                 sl,
                 FRF(
@@ -172,6 +184,7 @@ class CoupledSystem:
                     dofs=self.vehicle.dofs,
                     receptance=rec,
                     wheels=self.vehicle.wheel_names,
+                    rail_observed=observed,
                 ),
             )
 
@@ -255,23 +268,47 @@ def track_receptances(
     return out
 
 
+def _compiled_receptance(
+    track: PeriodicTrack, f: NDArray[np.float64], x: NDArray[np.float64], x_obs: NDArray[np.float64]
+) -> NDArray[np.complex128]:
+    """One track's receptance from contacts `x` to points `x_obs` (m) on the compiled kernel.
+
+    ``(n_freq, n_obs, n_w)``, m/N, from the expressions of :func:`track_receptances`.
+    """
+    if not _stackable(track):
+        return track.receptance(f, x, x_obs)
+    track.check_frequencies(f)
+    omega = 2.0 * np.pi * f
+    d, ei = track.sleeper_spacing, _complex_ei(track)
+    b4 = np.asarray(track.rail.mass_per_length * omega**2 * d**4 / ei, dtype=np.complex128)
+    k = np.asarray(track.support_stiffness(f) * d**3 / ei, dtype=np.complex128)
+    rec, condition = _dimensionless(b4, k, x / d, True, x_obs / d)
+    warn_if_ill_conditioned(f, condition)
+    return rec * (d**3 / ei)
+
+
 def _dimensionless(
     beta4: NDArray[np.complex128],
     pad: NDArray[np.complex128],
     x: NDArray[np.float64],
     compiled: bool,
+    x_obs: NDArray[np.float64] | None = None,
 ) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
-    """Dimensionless receptance of a block, and the matching's condition estimate."""
+    """Dimensionless receptance of a block, and the matching's condition estimate.
+
+    From the loads at `x` to the points `x_obs` (default `x`), dimensionless positions.
+    """
+    obs = x if x_obs is None else x_obs
     if compiled:
-        rec, condition, bad = compiled_receptance(beta4, pad, x, x)
+        rec, condition, bad = compiled_receptance(beta4, pad, x, obs)
         if not bad.any():
             return rec, condition
         waves = stacked_waves(beta4[bad], pad[bad])
-        rec[bad] = stacked(receptance_entries(waves, x, x))
+        rec[bad] = stacked(receptance_entries(waves, x, obs))
         condition[bad] = waves.condition
         return rec, condition
     waves = stacked_waves(beta4, pad)
-    return np.asarray(stacked(receptance_entries(waves, x, x))), np.asarray(waves.condition)
+    return np.asarray(stacked(receptance_entries(waves, x, obs))), np.asarray(waves.condition)
 
 
 def coupled_response(

@@ -51,6 +51,11 @@ class FRF:
     wheels : tuple of str
         Names of the wheels where they are named per car (a train, ``car1.wheel1``, ...);
         empty: the rail labels are numbered ``rail@wheel<j>``.
+    rail_observed : numpy.ndarray or None
+        Rail displacement at further points of the rail, ``(..., n_freq, n_obs)``, m/m,
+        where the solver was asked for them
+        (:meth:`railvib.coupling.CoupledSystem.frf_blocks`: the rail seats under the
+        wheels, from the same waves as the contact).
     """
 
     f: NDArray[np.float64]
@@ -60,6 +65,7 @@ class FRF:
     dofs: tuple[str, ...] = ()
     receptance: NDArray[np.complex128] | None = None
     wheels: tuple[str, ...] = ()
+    rail_observed: NDArray[np.complex128] | None = None
 
     @property
     def n_wheel(self) -> int:
@@ -86,4 +92,5 @@ class FRF:
             self.dofs,
             self.receptance,
             self.wheels,
+            None if self.rail_observed is None else self.rail_observed[index],
         )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -35,9 +36,10 @@ from railvib.outputs import (
     octave_table,
     third_octave_bands,
 )
-from railvib.outputs.supports import support_force_variables
+from railvib.outputs.supports import gives_seat_forces, seat_positions, support_force_variables
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
 from railvib.plot import OVERVIEW_STEMS
+from railvib.response import FRF
 from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
@@ -134,12 +136,29 @@ def run_system(
         **(attrs or {}),
     }
     settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
+    # the rail at the seats under the wheels from the same track solve as the contact's
+    seats = None
+    if gives_seat_forces(system, f):
+        seats = seat_positions(system.wheel_positions, system.track.sleeper_spacing)
+    seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        ds = build_dataset_blocks(f, system.frf_blocks(f), s_r, attrs=meta, extra=extra)
+        blocks = _kept(system.frf_blocks(f, observe=seats), seat_rail)
+        ds = build_dataset_blocks(f, blocks, s_r, attrs=meta, extra=extra)
     check_finite(ds)  # before the derived outputs, which assume finite PSDs
-    ds = ds.assign(support_force_variables(system, ds))
+    # a slab track gives its bearing forces from the contact forces (its seats share the slab)
+    ds = ds.assign(support_force_variables(system, ds, rail=None if seats is None else seat_rail))
     ds = derive(ds, DEFAULT_OUTPUTS, settings)
     return derive(ds, list(criteria or {}), criteria) if criteria else ds
+
+
+def _kept(
+    blocks: Iterator[tuple[slice, FRF]], observed: NDArray[np.complex128]
+) -> Iterator[tuple[slice, FRF]]:
+    """`blocks` as they are, each block's ``rail_observed`` kept into `observed` on the way."""
+    for sl, frf in blocks:
+        if frf.rail_observed is not None:
+            observed[sl] = frf.rail_observed
+        yield sl, frf
 
 
 def _overlap(band: tuple[float, float], f: NDArray[np.float64]) -> tuple[float, float] | None:

@@ -21,12 +21,12 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from railvib.coupling import CoupledSystem
+from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
 from railvib.grid import trapezoid
 from railvib.pads.scaled import ScaledPad
 from railvib.track.slab import SlabTrack
 
-__all__ = ["seat_positions", "support_force_variables"]
+__all__ = ["gives_seat_forces", "seat_positions", "support_force_variables"]
 
 
 def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDArray[np.float64]:
@@ -49,7 +49,33 @@ def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDAr
     return np.floor(np.asarray(wheel_positions, dtype=float) / spacing + 0.5 + 1e-9) * spacing
 
 
-def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, xr.DataArray]:
+def gives_seat_forces(system: CoupledSystem, f: NDArray[np.float64]) -> bool:
+    """Whether the track of `system` gives the forces through its rail seats (not a slab's).
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The system (its track).
+    f : numpy.ndarray
+        The run's frequencies, Hz (the first is tried: a tabulated layer's range holds it).
+
+    Returns
+    -------
+    bool
+        False where the track's ``seat_response`` raises NotImplementedError.
+    """
+    track = system.track
+    seat = seat_positions(system.wheel_positions[:1], track.sleeper_spacing)
+    try:
+        track.seat_response(f[:1], seat, np.zeros((1, 1), dtype=np.complex128))
+    except NotImplementedError:
+        return False
+    return True
+
+
+def support_force_variables(
+    system: CoupledSystem, ds: xr.Dataset, rail: NDArray[np.complex128] | None = None
+) -> dict[str, xr.DataArray]:
     """PSD and RMS of the force in each layer of the seat under each wheel.
 
     Parameters
@@ -59,6 +85,11 @@ def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, 
     ds : xarray.Dataset
         The result as built in memory: ``frf_force`` (complex contact force per metre of
         irregularity, N/m) and ``irregularity_psd`` (m^2/Hz) over ``frequency``.
+    rail : numpy.ndarray, optional
+        The rail displacement at the seats (:func:`seat_positions`) per metre of
+        irregularity, ``(frequency, wheel)``, m/m, where the solve gave it
+        (``CoupledSystem.frf_blocks(observe=seats)``: ``FRF.rail_observed``); default:
+        from the contact forces through the track's receptance.
 
     Returns
     -------
@@ -70,22 +101,48 @@ def support_force_variables(system: CoupledSystem, ds: xr.Dataset) -> dict[str, 
     """
     track = system.track
     f = ds["frequency"].values
-    contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
+    s_r = ds["irregularity_psd"].values
     if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
+        contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
         try:
             support = track.seat_forces(f, system.wheel_positions, contact)
         except NotImplementedError:  # a continuous foundation: no discrete supports
             return {}
-        seats, layers = support.x, support.force
-    else:
-        seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
-        receptance = track.receptance(f, system.wheel_positions, seats)  # (f, seat, wheel)
-        rail = np.einsum("fsw,fw->fs", receptance, contact)
-        layers = track.seat_response(f, seats, rail).force
+        seats, names = support.x, list(support.force)
+        per_slab_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
+        psd = np.stack(
+            [np.abs(support.force[name] / per_slab_rail) ** 2 * s_r[:, None] for name in names],
+            axis=-1,
+        )  # (frequency, wheel, layer)
+        return _variables(f, seats, names, psd)
+    seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
+    if not gives_seat_forces(system, f):  # a track without seats modelled one by one
+        return {}
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
-    names = list(layers)
-    frf = np.stack([layers[name] for name in names], axis=-1) / per_rail  # (f, wheel, layer)
-    psd = np.abs(frf) ** 2 * ds["irregularity_psd"].values[:, None, None]
+    names: list[str] = []
+    psd = np.empty((f.size, seats.size, 0))
+    # block by block, so the temporaries are a block's whatever the grid
+    for start in range(0, f.size, FREQUENCY_BLOCK):
+        sl = slice(start, start + FREQUENCY_BLOCK)
+        if rail is None:
+            contact = np.asarray(ds["frf_force"].values[sl], dtype=np.complex128)
+            receptance = track.receptance(f[sl], system.wheel_positions, seats)  # (f, seat, w)
+            rail_block = np.einsum("fsw,fw->fs", receptance, contact)
+        else:
+            rail_block = rail[sl]
+        layers = track.seat_response(f[sl], seats, rail_block).force
+        if not names:
+            names = list(layers)
+            psd = np.empty((f.size, seats.size, len(names)))  # (frequency, wheel, layer)
+        for i, name in enumerate(names):
+            psd[sl, :, i] = np.abs(layers[name] / per_rail) ** 2 * s_r[sl, None]
+    return _variables(f, seats, names, psd)
+
+
+def _variables(
+    f: NDArray[np.float64], seats: NDArray[np.float64], names: list[str], psd: NDArray[np.float64]
+) -> dict[str, xr.DataArray]:
+    """The support-force variables of `psd` (N^2/Hz, ``(frequency, wheel, layer)``)."""
     coords = {
         "layer": ("layer", names, {"long_name": "layer of the rail seat, top down"}),
         "support_position": (

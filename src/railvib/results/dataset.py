@@ -121,12 +121,12 @@ def build_dataset_blocks(
         ),
         "wheel": ("wheel", np.arange(1, frf.n_wheel + 1), {"long_name": "wheel"}),
     }
-    data = {name: (var.dims, values[name], var.attrs) for name, var in VARIABLES.items()}
+    data: dict[str, Any] = {
+        name: (var.dims, values[name], var.attrs) for name, var in VARIABLES.items()
+    }
+    data.update(extra or {})  # one alignment for all, not one per variable
     ds = xr.Dataset(data, coords=coords, attrs={"psd_convention": PSD_CONVENTION, **(attrs or {})})
-    ds = with_unit_coordinates(ds, {name: name for name in VARIABLES if name in QUANTITY_UNITS})
-    for name, da in (extra or {}).items():
-        ds[name] = da
-    return ds
+    return with_unit_coordinates(ds, {name: name for name in VARIABLES if name in QUANTITY_UNITS})
 
 
 def _split_complex(ds: xr.Dataset) -> xr.Dataset:

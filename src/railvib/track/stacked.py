@@ -202,17 +202,23 @@ def receptance_entries(
             [dot(row, [c[k] for c in side]) for k in range(2)] for side in (waves.right, waves.left)
         ]
     powers: dict[int, list[Any]] = {}
+    # pairs with the same local coordinates, side and bay count are the same numbers (the
+    # wheels of two bogies a whole number of bays apart): each formed once
+    pairs: dict[tuple[float, float, int, int], Any] = {}
     out = []
     for i in range(x_obs.size):
         out_row = []
         for j in range(x_load.size):
             side = 0 if x_obs[i] >= x_load[j] else 1
             m = int(abs(ref_obs[i] - ref_load[j]))
-            if m not in powers:
-                powers[m] = [mu_k**m for mu_k in waves.mu]
-            a = amps[float(xi[j])][2 * side : 2 * side + 2]
-            d_k = disp[float(eta[i])][side]
-            out_row.append(a[0] * powers[m][0] * d_k[0] + a[1] * powers[m][1] * d_k[1])
+            key = (float(eta[i]), float(xi[j]), side, m)
+            if key not in pairs:
+                if m not in powers:
+                    powers[m] = [mu_k**m for mu_k in waves.mu]
+                a = amps[float(xi[j])][2 * side : 2 * side + 2]
+                d_k = disp[float(eta[i])][side]
+                pairs[key] = a[0] * powers[m][0] * d_k[0] + a[1] * powers[m][1] * d_k[1]
+            out_row.append(pairs[key])
         out.append(out_row)
     return out
 

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.errors import CaseError
-from railvib.stack import PIVOT_THRESHOLD, dot, put, stacked, to_numpy
+from railvib.stack import PIVOT_THRESHOLD, put, stacked, to_numpy
 from railvib.vehicle.parts import Attachment, RigidBody, Suspension, Wheel
 
 __all__ = ["Vehicle", "WheelCondensation"]
@@ -282,7 +282,7 @@ class Vehicle:
         omega2 = omega**2
         m, c, k = self._matrices
         d = {
-            (i, j): k[i, j] - omega2 * m[i, j] + (1j * c[i, j]) * omega
+            (i, j): _entry(k[i, j], m[i, j], c[i, j], omega, omega2, xp)
             for i, j in self._elimination.pattern
         }
         f_np = np.atleast_1d(np.asarray(f, dtype=float))
@@ -311,13 +311,18 @@ class Vehicle:
         wheels = [int(w) for w in self.wheel_dofs]
         n_w = len(wheels)
         zero = xp.zeros_like(omega, dtype=complex)
+        # back-substitution on the tree: a wheel's row is a unit vector, a body's row holds
+        # only the wheels below it, so structural zeros (None) and ones are never multiplied
         rows: dict[int, list[Any]] = {
-            w: [zero + 1.0 if b == iw else zero for b in range(n_w)] for iw, w in enumerate(wheels)
+            w: [_UNIT if b == iw else None for b in range(n_w)] for iw, w in enumerate(wheels)
         }
         for (p, nb), ell in zip(reversed(self._elimination.steps), reversed(factors), strict=True):
-            rows[p] = [-dot([ell[j] for j in nb], [rows[j][b] for j in nb]) for b in range(n_w)]
+            rows[p] = [_back([(ell[j], rows[j][b]) for j in nb]) for b in range(n_w)]
         stiffness = [[d.get(_key(a, b), zero) for b in wheels] for a in wheels]
-        recovery = [rows[i] for i in range(len(self.dofs))]
+        recovery = [
+            [zero if r is None else zero + 1.0 if r is _UNIT else r for r in rows[i]]
+            for i in range(len(self.dofs))
+        ]
         if bad is not None and bool(xp.any(bad)):
             stiffness, recovery = self._dense_at(f, bad, stiffness, recovery, xp)
         return WheelCondensation(stiffness, recovery)
@@ -444,6 +449,33 @@ class _ScaledElement:
             self.element.stiffness(f), dtype=np.complex128
         )
         return out
+
+
+#: marks a structural one of the recovery (a wheel's own displacement)
+_UNIT: Any = object()
+
+
+def _entry(k: float, m: float, c: float, omega: Any, omega2: Any, xp: Any) -> Any:
+    """``k - omega^2 m + i omega c`` over the frequencies, the zero terms not formed."""
+    real = k - omega2 * m if m != 0.0 else None
+    if c == 0.0:
+        return (xp.zeros_like(omega) + k if real is None else real) + 0j
+    imag = (1j * c) * omega
+    return imag + k if real is None else real + imag
+
+
+def _back(terms: list[tuple[Any, Any]]) -> Any:
+    """``-sum ell r`` over the terms whose ``r`` is not a structural zero (None); None if all are.
+
+    ``r`` is an entry array or :data:`_UNIT` (then ``ell`` alone is the product).
+    """
+    products = [ell if r is _UNIT else ell * r for ell, r in terms if r is not None]
+    if not products:
+        return None
+    out = products[0]
+    for p in products[1:]:
+        out = out + p
+    return -out
 
 
 def _key(i: int, j: int) -> tuple[int, int]:
