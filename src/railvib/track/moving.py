@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError, SolverWarning
 from railvib.track.moving_kernel import NODES, compiled_available, panel_rules
 from railvib.track.periodic import VANISHING_LOSS_FACTOR, PeriodicTrack
+from railvib.track.slab import SlabTrack
 
 __all__ = [
     "COMPILED_MIN_FREQUENCIES",
@@ -182,6 +183,7 @@ def moving_load_receptance(
     r: ArrayLike = (0.0,),
     tolerance: float = 1e-2,
     compiled: bool | None = None,
+    quadrature_tolerance: float | None = None,
 ) -> MovingLoadResponse:
     """Rail response to a unit harmonic point load moving at constant speed.
 
@@ -205,6 +207,16 @@ def moving_load_receptance(
     tolerance : float
         Largest harmonic left out (``|n| = N + 1, N + 2``, computed to check), relative to
         the largest one, for ``N >= 1`` (dimensionless).
+    compiled : bool, optional
+        Run the wavenumber integral on the numba kernel (True; numba must be installed)
+        or on NumPy (False). Default: numba where it is installed, ``RAILVIB_COMPILED`` is
+        not ``0`` and there are at least :data:`COMPILED_MIN_FREQUENCIES` frequencies. Both
+        give the same harmonics to rounding (the refinement they choose is the same).
+    quadrature_tolerance : float, optional
+        Gauss-Kronrod error estimate a wavenumber panel may keep, relative to the largest
+        harmonic at its frequency (dimensionless, 1e-12 .. 1e-3; default
+        :data:`_PANEL_TOLERANCE` = 1e-6). The harmonics' error is about this size; a looser
+        one costs fewer nodes (1e-5: about 30 % fewer).
 
     Returns
     -------
@@ -216,7 +228,8 @@ def moving_load_receptance(
         ``track.rail.shear_stiffness`` for a Timoshenko rail (no moving-load formulation
         yet), ``moving.speed_m_per_s`` outside its bound, ``moving.harmonic_order`` out of
         range or too low for the speed and band (naming the order needed),
-        ``moving.r_m`` or ``frequency`` not finite.
+        ``moving.r_m`` or ``frequency`` not finite, ``moving.quadrature_tolerance`` out of
+        range, ``moving.compiled`` True without numba, ``track.model`` a slab track.
 
     Examples
     --------
@@ -236,7 +249,15 @@ def moving_load_receptance(
         raise CaseError(
             "moving.compiled", compiled, "False where numba is not installed or RAILVIB_COMPILED=0"
         )
-    amplitudes = _harmonics(track, f_arr, v, n_orders, r_arr, bool(compiled))
+    if quadrature_tolerance is None:
+        quadrature_tolerance = _PANEL_TOLERANCE
+    if not (np.isfinite(quadrature_tolerance) and 1e-12 <= quadrature_tolerance <= 1e-3):
+        raise CaseError(
+            "moving.quadrature_tolerance", quadrature_tolerance, "between 1e-12 and 1e-3 (-)"
+        )
+    amplitudes = _harmonics(
+        track, f_arr, v, n_orders, r_arr, (bool(compiled), float(quadrature_tolerance))
+    )
     if order >= 1:
         _check_order(f_arr, v, amplitudes, order, tolerance)
     kept = amplitudes[:, :, _EXTRA : amplitudes.shape[2] - _EXTRA]
@@ -256,6 +277,13 @@ def _checked(
     """The inputs, checked before anything is computed."""
     if not isinstance(track, PeriodicTrack):
         raise CaseError("track", type(track).__name__, "a PeriodicTrack (rigid_base or ballasted)")
+    if isinstance(track, SlabTrack):
+        raise CaseError(
+            "track.model",
+            type(track).__name__,
+            "rigid_base or ballasted: the moving-load formulation needs each rail seat on its "
+            "own support, and a slab couples them",
+        )
     if track.rail.is_timoshenko:
         raise CaseError(
             "track.rail.shear_stiffness",
@@ -337,7 +365,7 @@ def _harmonics(
     v: float,
     orders: NDArray[np.int64],
     r: NDArray[np.float64],
-    compiled: bool,
+    method: tuple[bool, float],
 ) -> NDArray[np.complex128]:
     """``A_n(Omega, r)`` by the adaptive wavenumber integral, m/N, ``(n_freq, n_obs, n_harm)``."""
     a, b = _starting_panels(track, float(f.max(initial=0.0)), int(np.abs(orders).max()))
@@ -346,7 +374,7 @@ def _harmonics(
     for start in range(0, f.size, _BATCH):  # bounds the memory of the panel lists
         stop = min(start + _BATCH, f.size)
         out[start:stop], left[start:stop] = _integrate(
-            track, f[start:stop], v, orders, r, (a, b), compiled
+            track, f[start:stop], v, orders, r, (a, b), method
         )
     if np.any(left > _WARN_ERROR):
         bad = left > _WARN_ERROR
@@ -370,17 +398,18 @@ def _integrate(
     orders: NDArray[np.int64],
     r: NDArray[np.float64],
     panels: tuple[NDArray[np.float64], NDArray[np.float64]],
-    compiled: bool,
+    method: tuple[bool, float],
 ) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
     """Adaptive Gauss-Kronrod integral, each frequency refining its own panels.
 
     Every frequency starts from the shared `panels` ``(a, b)``; each panel is integrated
     by the 15-point Kronrod rule with the embedded 7-point Gauss rule as its error
-    estimate (:func:`~railvib.track.moving_kernel.panel_rules`), and a panel whose
-    estimate exceeds :data:`_PANEL_TOLERANCE` of the largest harmonic at its own
-    frequency is bisected, up to :data:`_MAX_LEVELS` times. Returns the harmonics and the
-    error estimate left (relative, per frequency).
+    estimate (:func:`~railvib.track.moving_kernel.panel_rules`, compiled or not:
+    ``method = (compiled, tolerance)``), and a panel whose estimate exceeds `tolerance` of
+    the largest harmonic at its own frequency is bisected, up to :data:`_MAX_LEVELS`
+    times. Returns the harmonics and the error estimate left (relative, per frequency).
     """
+    compiled, tolerance = method
     rail = track.rail
     d = track.sleeper_spacing
     constants = (
@@ -415,7 +444,7 @@ def _integrate(
         if scale is None:  # the largest harmonic per frequency, from the starting panels
             scale = np.maximum(np.abs(_sum_by(which, rule, n_f)).max(axis=1), np.finfo(float).tiny)
         relative = error / scale[which]
-        done = relative <= _PANEL_TOLERANCE
+        done = relative <= tolerance
         if level == _MAX_LEVELS:
             left = _sum_by(which[~done], relative[~done, None], n_f)[:, 0].real
             done[:] = True
