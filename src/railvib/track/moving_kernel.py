@@ -69,9 +69,16 @@ _GAUSS = np.concatenate([_WG[:-1], _WG[::-1]])
 #: ``1 / (4 j + 3)!``, j = 0..3: the series of ``(sinh z - sin z) / (2 z^3)`` in ``z^4``
 _S3_SERIES = (1.0 / 6.0, 1.0 / 5040.0, 1.0 / 39916800.0, 1.0 / 1.307674368e12)
 
-#: numba's fast-math flags for the node loop: reassociation and contraction let it
-#: vectorise the loop over harmonics (-20 % time); NaN and infinity keep their meaning
-_FASTMATH = {"nsz", "arcp", "contract", "afn", "reassoc"}
+#: numba's fast-math flags for the node loop: reassociation lets it vectorise the sums
+#: over harmonics; NaN and infinity keep their meaning, and without contraction (fused
+#: multiply-add) each node's omega = Omega - k v is the caller's to the last bit (the
+#: sign at which K(omega) was conjugated)
+_FASTMATH = {"nsz", "arcp", "afn", "reassoc"}
+
+#: a node exactly at the fixed frame's omega = 0 is moved to this, rad/s (the lattice sum
+#: and G_n, at a node where also k_n = 0, would give 0/0 there: the singularity is
+#: removable, and K(omega) is evaluated at >= 1e-9 Hz anyway)
+OMEGA_FLOOR = 2.0 * np.pi * 1e-9
 
 _KERNEL: list[Any] = []
 
@@ -165,6 +172,7 @@ def panel_rules(
             NODES,
             _KRONROD,
             _GAUSS,
+            OMEGA_FLOOR,
             rule,
             error,
         )
@@ -205,6 +213,7 @@ def integrand(
         Shape ``k.shape + (n_harm,)``, complex.
     """
     ei, m, eta, d = rail
+    omega = np.where(omega == 0.0, OMEGA_FLOOR, omega)
     sign = np.where(omega < 0.0, -1.0, 1.0)
     ei_c = ei * (1.0 + 1j * eta * sign)  # hysteretic: EI (1 - i eta) at omega < 0
     lattice = lattice_sum(k * d, m * omega**2 * d**4 / ei_c) * d**4 / ei_c
@@ -276,6 +285,7 @@ def _panels(  # noqa: PLR0913 - the compiled loop takes plain arrays and scalars
     nodes: Any,
     w_kronrod: Any,
     w_gauss: Any,
+    omega_floor: float,
     rule: Any,
     error: Any,
 ) -> None:
@@ -292,6 +302,8 @@ def _panels(  # noqa: PLR0913 - the compiled loop takes plain arrays and scalars
         for q in range(nodes.size):
             k = mid[p] + half[p] * nodes[q]
             omega = omega_load[p] - k * speed
+            if omega == 0.0:
+                omega = omega_floor
             ei_c = ei_pos.conjugate() if omega < 0.0 else ei_pos
             inv_ei = inv_pos.conjugate() if omega < 0.0 else inv_pos
             mass = m * omega * omega
