@@ -369,14 +369,14 @@ def _harmonics(
     method: tuple[bool, float],
 ) -> NDArray[np.complex128]:
     """``A_n(Omega, r)`` by the adaptive wavenumber integral, m/N, ``(n_freq, n_obs, n_harm)``."""
-    a, b = _starting_panels(track, float(f.max(initial=0.0)), int(np.abs(orders).max()))
     out = np.empty((f.size, r.size, orders.size), dtype=np.complex128)
     left = np.zeros(f.size)
+    ascending = np.argsort(f, kind="stable")
     for start in range(0, f.size, _BATCH):  # bounds the memory of the panel lists
-        stop = min(start + _BATCH, f.size)
-        out[start:stop], left[start:stop] = _integrate(
-            track, f[start:stop], v, orders, r, (a, b), method
-        )
+        batch = ascending[start : start + _BATCH]
+        # the core of the panels reaches 4 bending wavenumbers at the batch's top frequency
+        panels = _starting_panels(track, float(f[batch[-1]]), int(np.abs(orders).max()))
+        out[batch], left[batch] = _integrate(track, f[batch], v, orders, r, panels, method)
     if np.any(left > _WARN_ERROR):
         bad = left > _WARN_ERROR
         warnings.warn(
