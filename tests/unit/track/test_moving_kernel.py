@@ -69,7 +69,7 @@ def test_compiled_rules_equal_numpy_rules():
     pytest.importorskip("numba")
     if not kernel.compiled_available():
         pytest.skip("RAILVIB_COMPILED=0")
-    mid, half, omega_load, support = _panels(400, seed=1)
+    mid, half, omega_load, support = _panels(100, seed=1)
     ref_rule, _ = kernel.panel_rules(mid, half, omega_load, support, 30.0, RAIL, SHIFT, R)
     rule, _ = kernel.panel_rules(
         mid, half, omega_load, support, 30.0, RAIL, SHIFT, R, compiled=True
