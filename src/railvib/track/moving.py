@@ -36,6 +36,7 @@ from railvib.errors import CaseError, SolverWarning
 from railvib.track.moving_kernel import NODES, compiled_available, panel_rules
 from railvib.track.periodic import VANISHING_LOSS_FACTOR, PeriodicTrack
 from railvib.track.slab import SlabTrack
+from railvib.track.timoshenko import wavenumbers
 
 __all__ = [
     "COMPILED_MIN_FREQUENCIES",
@@ -80,8 +81,10 @@ _MAX_LEVELS = 30
 _WARN_ERROR = 1e-4
 
 #: the integral is carried to this multiple of the core half-width (geometric panels):
-#: the integrand falls as k^-4 there, so the tail left out is < 1e-8 of the result
+#: the integrand falls as k^-4 there, so the tail left out is < 1e-8 of the result; on a
+#: Timoshenko rail as 1 / (kappa G A k^2) (shear), hence the longer tail: < 1e-7
 _TAIL_FACTOR = 40.0
+_TAIL_FACTOR_TIMOSHENKO = 4000.0
 _TAIL_RATIO = 4.0
 
 #: frequencies integrated together (each refines its own panels; the batch bounds memory)
@@ -244,11 +247,14 @@ def moving_load_receptance(
     f_arr, v, r_arr = _checked(track, f, speed, order, r, tolerance)
     # two harmonics more than asked for, to measure what the order leaves out
     n_orders = np.arange(-order - _EXTRA, order + _EXTRA + 1)
+    euler = not track.rail.is_timoshenko
     if compiled is None:
-        compiled = f_arr.size >= COMPILED_MIN_FREQUENCIES and compiled_available()
-    elif compiled and not compiled_available():
+        compiled = euler and f_arr.size >= COMPILED_MIN_FREQUENCIES and compiled_available()
+    elif compiled and not (euler and compiled_available()):
         raise CaseError(
-            "moving.compiled", compiled, "False where numba is not installed or RAILVIB_COMPILED=0"
+            "moving.compiled",
+            compiled,
+            "False for a Timoshenko rail, or where numba is not installed or RAILVIB_COMPILED=0",
         )
     if quadrature_tolerance is None:
         quadrature_tolerance = _PANEL_TOLERANCE
@@ -284,13 +290,6 @@ def _checked(
             type(track).__name__,
             "rigid_base or ballasted: the moving-load formulation needs each rail seat on its "
             "own support, and a slab couples them",
-        )
-    if track.rail.is_timoshenko:
-        raise CaseError(
-            "track.rail.shear_stiffness",
-            track.rail.shear_stiffness,
-            "omitted (an Euler-Bernoulli rail): the moving-load formulation uses the "
-            "Euler rail's free-beam Green's function (N)",
         )
     f_arr = np.atleast_1d(np.asarray(f, dtype=float))
     if f_arr.ndim != 1 or not np.all(np.isfinite(f_arr) & (f_arr >= 0)):
@@ -413,12 +412,14 @@ def _integrate(
     compiled, tolerance = method
     rail = track.rail
     d = track.sleeper_spacing
-    constants = (
+    constants: tuple[float, ...] = (
         rail.bending_stiffness,
         rail.mass_per_length,
         max(rail.loss_factor, VANISHING_LOSS_FACTOR),
         d,
     )
+    if rail.shear_stiffness is not None:
+        constants += (rail.shear_stiffness, rail.rotary_inertia)
     shift = np.asarray(2.0 * np.pi * orders / d, dtype=np.float64)
     n_f, n_out = f.size, r.size * orders.size
     which = np.repeat(np.arange(n_f), panels[0].size)  # the frequency of each panel
@@ -489,17 +490,28 @@ def _starting_panels(
 
     At most ``4 pi/d`` wide over the core ``|k| <= k_core``, which covers the harmonic shifts
     ``2 pi (N + 1) / d`` and four free bending wavenumbers at `f_max`, then growing
-    geometrically (ratio 4) to at least ``40 k_core`` (the integrand falls as ``k^-4``).
+    geometrically (ratio 4) to at least ``40 k_core`` (the integrand falls as ``k^-4``;
+    ``4000 k_core`` on a Timoshenko rail, where it falls as ``k^-2``).
     """
     d = track.sleeper_spacing
     unit = np.pi / d
     rail = track.rail
     k_bend = (rail.mass_per_length * (2.0 * np.pi * f_max) ** 2 / rail.bending_stiffness) ** 0.25
+    tail_factor = _TAIL_FACTOR
+    if rail.shear_stiffness is not None:  # shear makes the rail softer: a larger wavenumber
+        omega2 = (2.0 * np.pi * f_max) ** 2
+        beta4 = np.array([rail.mass_per_length * omega2 * d**4 / rail.bending_stiffness + 0j])
+        rho_eps = np.array([rail.rotary_inertia * omega2 / rail.shear_stiffness + 0j])
+        eps = rail.bending_stiffness / (rail.shear_stiffness * d**2)
+        rho = np.asarray(rho_eps / eps, dtype=np.complex128)
+        a2 = wavenumbers(beta4, eps, rho, rho_eps)[0]
+        k_bend = max(k_bend, float(np.abs(np.sqrt(a2[0]))) / d)
+        tail_factor = _TAIL_FACTOR_TIMOSHENKO
     n_units = 2 * (order + 1) + int(np.ceil(4.0 * k_bend / unit)) + 1
     n_panels = int(np.ceil(n_units / _PANEL))
     k_core = n_units * unit
     core = np.linspace(-k_core, k_core, 2 * n_panels + 1)
-    n_tail = int(np.ceil(np.log(_TAIL_FACTOR) / np.log(_TAIL_RATIO)))
+    n_tail = int(np.ceil(np.log(tail_factor) / np.log(_TAIL_RATIO)))
     tail = k_core * _TAIL_RATIO ** np.arange(1, 1 + n_tail)
     edges = np.concatenate([-tail[::-1], core, tail])
     return edges[:-1], edges[1:]

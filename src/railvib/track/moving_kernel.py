@@ -21,7 +21,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["compiled_available", "panel_rules"]
+from railvib.track.beam import _odd_divided_difference, _over
+from railvib.track.timoshenko import wavenumbers
+
+__all__ = ["compiled_available", "lattice_sum", "panel_rules", "timoshenko_lattice_sum"]
 
 #: Gauss-Kronrod 7-15 nodes on [0, 1] of the half panel and weights (QUADPACK qk15)
 _XGK = np.array(
@@ -117,7 +120,7 @@ def panel_rules(
     omega_load: NDArray[np.float64],
     support: NDArray[np.complex128],
     speed: float,
-    rail: tuple[float, float, float, float],
+    rail: tuple[float, ...],
     shift: NDArray[np.float64],
     r: NDArray[np.float64],
     *,
@@ -139,13 +142,15 @@ def panel_rules(
         Load speed v, m/s.
     rail : tuple of float
         ``(EI, m, eta, d)``: bending stiffness (N m^2), mass per length (kg/m), loss factor
-        (> 0, dimensionless) and sleeper spacing (m).
+        (> 0, dimensionless) and sleeper spacing (m) of an Euler rail; a Timoshenko rail
+        adds ``(kappa G A, rho I)`` (N, kg m).
     shift : numpy.ndarray
         ``2 pi n / d`` of each harmonic, rad/m, ``(n_harm,)``.
     r : numpy.ndarray
         Observation points ahead of the load, m, ``(n_obs,)``.
     compiled : bool
-        Run the numba kernel (:func:`compiled_available` must be True) instead of NumPy.
+        Run the numba kernel (:func:`compiled_available` must be True; Euler rails only)
+        instead of NumPy.
 
     Returns
     -------
@@ -191,7 +196,7 @@ def integrand(
     k: NDArray[np.float64],
     omega: NDArray[np.float64],
     support: NDArray[np.complex128],
-    rail: tuple[float, float, float, float],
+    rail: tuple[float, ...],
     shift: NDArray[np.float64],
 ) -> NDArray[np.complex128]:
     """``G_n (delta_n0 - K w_0 / d)`` at wavenumbers `k` and fixed-frame `omega`, m^2/N.
@@ -203,7 +208,8 @@ def integrand(
     support : numpy.ndarray
         ``K(omega)``, N/m, same shape.
     rail : tuple of float
-        ``(EI, m, eta, d)`` as in :func:`panel_rules`.
+        ``(EI, m, eta, d)`` or ``(EI, m, eta, d, kappa G A, rho I)`` as in
+        :func:`panel_rules`.
     shift : numpy.ndarray
         ``2 pi n / d``, rad/m, ``(n_harm,)``.
 
@@ -212,17 +218,34 @@ def integrand(
     numpy.ndarray
         Shape ``k.shape + (n_harm,)``, complex.
     """
-    ei, m, eta, d = rail
+    ei, m, eta, d = rail[:4]
     omega = np.where(omega == 0.0, OMEGA_FLOOR, omega)
     sign = np.where(omega < 0.0, -1.0, 1.0)
-    ei_c = ei * (1.0 + 1j * eta * sign)  # hysteretic: EI (1 - i eta) at omega < 0
-    lattice = lattice_sum(k * d, m * omega**2 * d**4 / ei_c) * d**4 / ei_c
-    mass = m * omega**2
-    g0 = 1.0 / (ei_c * k**4 - mass)
-    reaction = support * g0 / (d + support * lattice)  # K w_0 / d
-    kn = k[..., None] + shift
-    gn = 1.0 / (ei_c[..., None] * kn**4 - mass[..., None])
-    return np.asarray(gn * ((shift == 0) - reaction[..., None]), dtype=np.complex128)
+    loss = 1.0 + 1j * eta * sign  # hysteretic: EI (1 - i eta) at omega < 0
+    ei_c = ei * loss
+    beta4 = m * omega**2 * d**4 / ei_c
+    if len(rail) == 4:  # Euler: G(k) = d^4 / EI* / ((kd)^4 - beta4)
+        lattice = lattice_sum(k * d, beta4)
+        kn = (k[..., None] + shift) * d
+        gn = 1.0 / (kn**4 - beta4[..., None])
+        g0 = 1.0 / ((k * d) ** 4 - beta4)
+    else:  # Timoshenko: G(k) = d^4 / EI* (eps (kd)^2 + 1 - rho eps) / ((kd)^4 - q (kd)^2 - g)
+        shear, rotary = rail[4], rail[5]
+        eps = ei / (shear * d**2)  # EI* / kGA*: both carry the same loss
+        rho_eps = rotary * omega**2 / (shear * loss)
+        rho = rotary * omega**2 * d**2 / ei_c
+        lattice = timoshenko_lattice_sum(k * d, beta4, eps, rho, rho_eps)
+        q, g = rho + eps * beta4, beta4 * (1.0 - rho_eps)
+        kn = (k[..., None] + shift) * d
+        gn = (eps * kn**2 + (1.0 - rho_eps)[..., None]) / (
+            kn**4 - q[..., None] * kn**2 - g[..., None]
+        )
+        g0 = (eps * (k * d) ** 2 + 1.0 - rho_eps) / ((k * d) ** 4 - q * (k * d) ** 2 - g)
+    scale = d**4 / ei_c  # m/N per unit of the dimensionless sums and G
+    reaction = support * g0 * scale / (d + support * lattice * scale)  # K w_0 / d
+    return np.asarray(
+        gn * scale[..., None] * ((shift == 0) - reaction[..., None]), dtype=np.complex128
+    )
 
 
 def lattice_sum(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDArray[np.complex128]:
@@ -261,6 +284,56 @@ def lattice_sum(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDArr
     mixed = 0.25 * (_sinc(1j * 0.5 * z) ** 2 * _sinc(z) + _sinc(0.5 * z) ** 2 * _sinc(1j * z))
     numerator = -2.0 * a * s3 + mixed
     return np.asarray(numerator / (8.0 * (a - p) * (a + q)), dtype=np.complex128)
+
+
+def timoshenko_lattice_sum(
+    kd: NDArray[np.float64],
+    beta4: NDArray[np.complex128],
+    eps: float,
+    rho: NDArray[np.complex128],
+    rho_eps: NDArray[np.complex128],
+) -> NDArray[np.complex128]:
+    """``sum_m g(kd + 2 pi m)``, ``g(x) = (eps x^2 + n0) / (x^4 - q x^2 - g)``: a Timoshenko rail.
+
+    ``q = rho + eps beta4``, ``g = beta4 (1 - rho eps)``, ``n0 = 1 - rho eps``; the roots
+    in ``x^2`` are ``a^2`` and ``-b^2`` (:func:`railvib.track.timoshenko.wavenumbers`).
+    With ``F(y) = sum_m 1 / ((kd + 2 pi m)^2 - y) = sinc(sqrt y) / (2 (cos sqrt y - cos kd))``
+    the partial fractions give ``eps F(a^2) + (n0 - eps b^2) DF``, ``DF`` the divided
+    difference of ``F`` at ``a^2`` and ``-b^2``:
+    ``DF = (D0 sin(a)/a - D1 (cos a - cos kd)) / (2 (cos a - cos kd)(cosh b - cos kd))``,
+    with ``D0 = (cosh b - cos a) / (a^2 + b^2)`` and ``D1 = (sinh(b)/b - sin(a)/a) / (a^2 +
+    b^2)`` formed without cancellation as for the Timoshenko span
+    (:func:`railvib.track.beam.timoshenko_transfer`). ``eps = rho = 0`` is the Euler
+    rail's :func:`lattice_sum`.
+
+    Parameters
+    ----------
+    kd : numpy.ndarray
+        Wavenumber times sleeper spacing (rad).
+    beta4, rho, rho_eps : numpy.ndarray
+        ``m omega^2 d^4 / EI*``, ``rho_I omega^2 d^2 / EI*`` and ``rho_I omega^2 / kGA*``
+        (dimensionless), the shape of `kd`.
+    eps : float
+        ``EI / (kappa G A d^2)`` (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray
+        The sum (dimensionless), complex, the shape of `kd`.
+    """
+    shape = np.shape(kd)
+    b4, rh, re = (np.asarray(x, dtype=np.complex128).ravel() for x in (beta4, rho, rho_eps))
+    a2, b2, _, _, r = wavenumbers(b4, complex(eps), rh, re)
+    a, b = np.sqrt(a2), np.sqrt(b2)
+    sin_a, sinh_b = _over(np.sin(a), a, 1.0), _over(np.sinh(b), b, 1.0)
+    d0 = 2.0 * np.sin(0.5 * (a + 1j * b)) * np.sin(0.5 * (a - 1j * b)) / r
+    q, g = rh + eps * b4, b4 * (1.0 - re)
+    d1 = _odd_divided_difference(sin_a, sinh_b, a, b, r, q, g, 1.0)
+    cos_kd = np.cos(np.ravel(kd))
+    v1, v2 = np.cos(a) - cos_kd, np.cosh(b) - cos_kd
+    divided = (d0 * sin_a - d1 * v1) / (2.0 * v1 * v2)
+    out = eps * sin_a / (2.0 * v1) + (1.0 - re - eps * b2) * divided
+    return np.asarray(out.reshape(shape), dtype=np.complex128)
 
 
 def _sinc(z: NDArray[np.complex128]) -> NDArray[np.complex128]:
