@@ -17,6 +17,9 @@ frame::
     k_n = k + 2 pi n / d,   G_n = 1 / (EI* k_n^4 - m omega^2),
     w_0 = G_0 / (1 + K S / d),   S = sum_m G_m (closed form),
 
+(``G_n`` the Timoshenko rail's free-beam Green's function where the rail has a shear
+stiffness, :func:`~railvib.track.moving_kernel.timoshenko_lattice_sum`)
+
 with ``K = K(omega)`` the support the rail sees at each seat
 (:meth:`~railvib.track.periodic.PeriodicTrack.support_stiffness`: the pad on a rigid base, or
 the pad-sleeper-ballast chain of :class:`~railvib.track.ballasted.BallastedTrack`). The
@@ -199,7 +202,8 @@ def moving_load_receptance(
     Parameters
     ----------
     track : PeriodicTrack
-        Rigid-base or ballasted periodic track with an Euler-Bernoulli rail.
+        Rigid-base or ballasted periodic track, Euler-Bernoulli or Timoshenko rail (the
+        latter on the NumPy kernel only).
     f : array_like
         Load frequencies in Hz (>= 0), ``(n_freq,)``.
     speed : float
@@ -229,11 +233,11 @@ def moving_load_receptance(
     Raises
     ------
     CaseError
-        ``track.rail.shear_stiffness`` for a Timoshenko rail (no moving-load formulation
-        yet), ``moving.speed_m_per_s`` outside its bound, ``moving.harmonic_order`` out of
+        ``moving.speed_m_per_s`` outside its bound, ``moving.harmonic_order`` out of
         range or too low for the speed and band (naming the order needed),
         ``moving.r_m`` or ``frequency`` not finite, ``moving.quadrature_tolerance`` out of
-        range, ``moving.compiled`` True without numba, ``track.model`` a slab track.
+        range, ``moving.compiled`` True without numba or for a Timoshenko rail,
+        ``track.model`` a slab track.
 
     Examples
     --------
