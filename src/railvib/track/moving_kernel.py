@@ -420,10 +420,13 @@ def _panels(  # noqa: PLR0913 - the compiled loop takes plain arrays and scalars
             wk, wg = w_kronrod[q] * half[p], w_gauss[q] * half[p]
             for o in range(n_obs):
                 phase = 1.0 + 0j if r[o] == 0.0 else complex(math.cos(k * r[o]), math.sin(k * r[o]))
+                wk_phase = wk * phase
                 for n in range(n_harm):
-                    term = value[n] * phase
-                    rule[p, o, n] += wk * term
-                    gauss[o, n] += wg * term
+                    rule[p, o, n] += wk_phase * value[n]
+                if wg != 0.0:  # the Gauss rule uses every other node
+                    wg_phase = wg * phase
+                    for n in range(n_harm):
+                        gauss[o, n] += wg_phase * value[n]
         worst = 0.0
         for o in range(n_obs):
             for n in range(n_harm):
