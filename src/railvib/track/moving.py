@@ -202,8 +202,7 @@ def moving_load_receptance(
     Parameters
     ----------
     track : PeriodicTrack
-        Rigid-base or ballasted periodic track, Euler-Bernoulli or Timoshenko rail (the
-        latter on the NumPy kernel only).
+        Rigid-base or ballasted periodic track, Euler-Bernoulli or Timoshenko rail.
     f : array_like
         Load frequencies in Hz (>= 0), ``(n_freq,)``.
     speed : float
@@ -236,8 +235,7 @@ def moving_load_receptance(
         ``moving.speed_m_per_s`` outside its bound, ``moving.harmonic_order`` out of
         range or too low for the speed and band (naming the order needed),
         ``moving.r_m`` or ``frequency`` not finite, ``moving.quadrature_tolerance`` out of
-        range, ``moving.compiled`` True without numba or for a Timoshenko rail,
-        ``track.model`` a slab track.
+        range, ``moving.compiled`` True without numba, ``track.model`` a slab track.
 
     Examples
     --------
@@ -251,14 +249,11 @@ def moving_load_receptance(
     f_arr, v, r_arr = _checked(track, f, speed, order, r, tolerance)
     # two harmonics more than asked for, to measure what the order leaves out
     n_orders = np.arange(-order - _EXTRA, order + _EXTRA + 1)
-    euler = not track.rail.is_timoshenko
     if compiled is None:
-        compiled = euler and f_arr.size >= COMPILED_MIN_FREQUENCIES and compiled_available()
-    elif compiled and not (euler and compiled_available()):
+        compiled = f_arr.size >= COMPILED_MIN_FREQUENCIES and compiled_available()
+    elif compiled and not compiled_available():
         raise CaseError(
-            "moving.compiled",
-            compiled,
-            "False for a Timoshenko rail, or where numba is not installed or RAILVIB_COMPILED=0",
+            "moving.compiled", compiled, "False where numba is not installed or RAILVIB_COMPILED=0"
         )
     if quadrature_tolerance is None:
         quadrature_tolerance = _PANEL_TOLERANCE

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from railvib.track.beam import _odd_divided_difference, _over
+from railvib.track.beam import _SERIES_TERMS, _SERIES_WAVENUMBER2, _odd_divided_difference, _over
 from railvib.track.timoshenko import wavenumbers
 
 __all__ = ["compiled_available", "lattice_sum", "panel_rules", "timoshenko_lattice_sum"]
@@ -82,6 +82,11 @@ _FASTMATH = {"nsz", "arcp", "afn", "reassoc"}
 #: and G_n, at a node where also k_n = 0, would give 0/0 there: the singularity is
 #: removable, and K(omega) is evaluated at >= 1e-9 Hz anyway)
 OMEGA_FLOOR = 2.0 * np.pi * 1e-9
+
+#: ``(-1)^j / (2 j + 3)!``: the series of the Timoshenko span's ``D1`` (railvib.track.beam,
+#: ``_odd_divided_difference``), summed by Clenshaw's recurrence where
+#: ``max(|a|, |b|)^2 <= 4``
+_D1_SERIES = np.array([(-1) ** j / math.factorial(2 * j + 3) for j in range(_SERIES_TERMS)])
 
 _KERNEL: list[Any] = []
 
@@ -149,8 +154,7 @@ def panel_rules(
     r : numpy.ndarray
         Observation points ahead of the load, m, ``(n_obs,)``.
     compiled : bool
-        Run the numba kernel (:func:`compiled_available` must be True; Euler rails only)
-        instead of NumPy.
+        Run the numba kernel (:func:`compiled_available` must be True) instead of NumPy.
 
     Returns
     -------
@@ -172,12 +176,14 @@ def panel_rules(
             np.ascontiguousarray(support, dtype=np.complex128),
             float(speed),
             *(float(x) for x in rail),
+            *((0.0, 0.0) if len(rail) == 4 else ()),  # shear 0: an Euler rail
             np.ascontiguousarray(shift, dtype=np.float64),
             np.ascontiguousarray(r, dtype=np.float64),
             NODES,
             _KRONROD,
             _GAUSS,
             OMEGA_FLOOR,
+            _D1_SERIES,
             rule,
             error,
         )
@@ -329,8 +335,10 @@ def timoshenko_lattice_sum(
     d0 = 2.0 * np.sin(0.5 * (a + 1j * b)) * np.sin(0.5 * (a - 1j * b)) / r
     q, g = rh + eps * b4, b4 * (1.0 - re)
     d1 = _odd_divided_difference(sin_a, sinh_b, a, b, r, q, g, 1.0)
-    cos_kd = np.cos(np.ravel(kd))
-    v1, v2 = np.cos(a) - cos_kd, np.cosh(b) - cos_kd
+    t = np.ravel(kd)
+    # cos a - cos kd and cosh b - cos kd as products: no cancellation at small kd
+    v1 = 2.0 * np.sin(0.5 * (t + a)) * np.sin(0.5 * (t - a))
+    v2 = 2.0 * np.sin(0.5 * (t + 1j * b)) * np.sin(0.5 * (t - 1j * b))
     divided = (d0 * sin_a - d1 * v1) / (2.0 * v1 * v2)
     out = eps * sin_a / (2.0 * v1) + (1.0 - re - eps * b2) * divided
     return np.asarray(out.reshape(shape), dtype=np.complex128)
@@ -343,7 +351,7 @@ def _sinc(z: NDArray[np.complex128]) -> NDArray[np.complex128]:
     return np.asarray(np.where(zero, 1.0, np.sin(safe) / safe), dtype=np.complex128)
 
 
-def _panels(  # noqa: PLR0913 - the compiled loop takes plain arrays and scalars
+def _panels(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compiler fuses
     mid: Any,
     half: Any,
     omega_load: Any,
@@ -353,22 +361,31 @@ def _panels(  # noqa: PLR0913 - the compiled loop takes plain arrays and scalars
     m: float,
     eta: float,
     d: float,
+    shear: float,
+    rotary: float,
     shift: Any,
     r: Any,
     nodes: Any,
     w_kronrod: Any,
     w_gauss: Any,
     omega_floor: float,
+    series: Any,
     rule: Any,
     error: Any,
 ) -> None:
-    """:func:`panel_rules` node by node, written for numba (fills `rule` and `error`)."""
+    """:func:`panel_rules` node by node, written for numba (fills `rule` and `error`).
+
+    ``shear = 0``: an Euler rail; else a Timoshenko rail (:func:`timoshenko_lattice_sum`,
+    with the coefficients `series` of its divided difference ``D1``).
+    """
     n_harm, n_obs = shift.size, r.size
     d4 = d**4
     gauss = np.empty((n_obs, n_harm), dtype=np.complex128)
     value = np.empty(n_harm, dtype=np.complex128)
     ei_pos = ei * complex(1.0, eta)  # hysteretic: EI (1 - i eta) at omega < 0
     inv_pos = 1.0 / ei_pos
+    timoshenko = shear > 0.0
+    eps = ei / (shear * d * d) if timoshenko else 0.0  # EI* / kGA* d^2: the loss cancels
     for p in range(mid.size):
         rule[p, :, :] = 0.0
         gauss[:, :] = 0.0
@@ -377,46 +394,81 @@ def _panels(  # noqa: PLR0913 - the compiled loop takes plain arrays and scalars
             omega = omega_load[p] - k * speed
             if omega == 0.0:
                 omega = omega_floor
-            ei_c = ei_pos.conjugate() if omega < 0.0 else ei_pos
             inv_ei = inv_pos.conjugate() if omega < 0.0 else inv_pos
-            mass = m * omega * omega
-            beta4 = mass * d4 * inv_ei
-            # the lattice sum (lattice_sum, scalar): sin and sinh of z/2 and z from the
-            # real functions of z's real and imaginary parts
-            z = cmath.sqrt(cmath.sqrt(beta4))
-            hx, hy = 0.5 * z.real, 0.5 * z.imag
-            sx, cx, sy, cy = math.sin(hx), math.cos(hx), math.sin(hy), math.cos(hy)
-            shx, chx, shy, chy = math.sinh(hx), math.cosh(hx), math.sinh(hy), math.cosh(hy)
-            sin_h = complex(sx * chy, cx * shy)
-            cos_h = complex(cx * chy, -sx * shy)
-            sinh_h = complex(shx * cy, chx * sy)
-            cosh_h = complex(chx * cy, shx * sy)
-            sin_z, sinh_z = 2.0 * sin_h * cos_h, 2.0 * sinh_h * cosh_h
-            pp, qq = sin_h * sin_h, sinh_h * sinh_h
-            a = math.sin(0.5 * k * d) ** 2
-            if abs(beta4) < 1.0:
-                s3 = 1.0 / 6.0 + beta4 * (
-                    1.0 / 5040.0 + beta4 * (1.0 / 39916800.0 + beta4 / 1.307674368e12)
-                )
-                # (qq sin z + pp sinh z) / z^3 as in lattice_sum: 1/2 at z = 0
-                mixed = 0.5 + 0j if z == 0 else (qq * sin_z + pp * sinh_z) / (z * z * z)
-                numerator = -2.0 * a * s3 + mixed
+            beta4 = m * omega * omega * d4 * inv_ei
+            theta = k * d
+            if timoshenko:  # timoshenko_lattice_sum, scalar
+                rho = rotary * omega * omega * d * d * inv_ei
+                rho_eps = rho * eps
+                eb = eps * beta4
+                qq = rho + eb
+                rr = cmath.sqrt((rho - eb) ** 2 + 4.0 * beta4)
+                if (qq.conjugate() * rr).real < 0.0:
+                    rr = -rr
+                gg = beta4 * (1.0 - rho_eps)
+                b2 = 2.0 * gg / (qq + rr)
+                a = cmath.sqrt(0.5 * (qq + rr))
+                b = cmath.sqrt(b2)
+                sin_a = cmath.sin(a) / a if a != 0 else 1.0 + 0j
+                sinh_b = cmath.sinh(b) / b if b != 0 else 1.0 + 0j
+                d0 = 2.0 * cmath.sin(0.5 * (a + 1j * b)) * cmath.sin(0.5 * (a - 1j * b)) / rr
+                if max(abs(a), abs(b)) ** 2 <= _SERIES_WAVENUMBER2:
+                    b_next, b_next2 = 0.0 + 0j, 0.0 + 0j
+                    for j in range(series.size - 1, -1, -1):
+                        b_j = qq * b_next + gg * b_next2 + series[j]
+                        b_next, b_next2 = b_j, b_next
+                    d1 = b_next
+                else:
+                    d1 = (sinh_b - sin_a) / rr
+                # cos a - cos kd and cosh b - cos kd as products: no cancellation at small kd
+                v1 = 2.0 * cmath.sin(0.5 * (theta + a)) * cmath.sin(0.5 * (theta - a))
+                v2 = 2.0 * cmath.sin(0.5 * (theta + 1j * b)) * cmath.sin(0.5 * (theta - 1j * b))
+                divided = (d0 * sin_a - d1 * v1) / (2.0 * v1 * v2)
+                n0 = 1.0 - rho_eps
+                lattice = eps * sin_a / (2.0 * v1) + (n0 - eps * b2) * divided
+                t2 = theta * theta
+                g0 = (eps * t2 + n0) / (t2 * t2 - qq * t2 - gg)
             else:
-                numerator = (-a * (sinh_z - sin_z) + qq * sin_z + pp * sinh_z) / (z * z * z)
-            # K w_0 / d = K G_0 / (d + K S), S the lattice sum times d^4 / EI*
-            k2 = k * k
-            kk = support[p, q]
-            denominator = 8.0 * (a - pp) * (a + qq)
-            g0_inv = ei_c * (k2 * k2) - mass
-            reaction = (
-                kk * denominator / (g0_inv * (d * denominator + kk * numerator * d4 * inv_ei))
-            )
+                # lattice_sum, scalar: sin and sinh of z/2 and z from the real functions
+                # of z's real and imaginary parts
+                z = cmath.sqrt(cmath.sqrt(beta4))
+                hx, hy = 0.5 * z.real, 0.5 * z.imag
+                sx, cx, sy, cy = math.sin(hx), math.cos(hx), math.sin(hy), math.cos(hy)
+                shx, chx = math.sinh(hx), math.cosh(hx)
+                shy, chy = math.sinh(hy), math.cosh(hy)
+                sin_h = complex(sx * chy, cx * shy)
+                cos_h = complex(cx * chy, -sx * shy)
+                sinh_h = complex(shx * cy, chx * sy)
+                cosh_h = complex(chx * cy, shx * sy)
+                sin_z, sinh_z = 2.0 * sin_h * cos_h, 2.0 * sinh_h * cosh_h
+                pp, qp = sin_h * sin_h, sinh_h * sinh_h
+                a_k = math.sin(0.5 * theta) ** 2
+                if abs(beta4) < 1.0:
+                    s3 = 1.0 / 6.0 + beta4 * (
+                        1.0 / 5040.0 + beta4 * (1.0 / 39916800.0 + beta4 / 1.307674368e12)
+                    )
+                    # (qp sin z + pp sinh z) / z^3 as in lattice_sum: 1/2 at z = 0
+                    mixed = 0.5 + 0j if z == 0 else (qp * sin_z + pp * sinh_z) / (z * z * z)
+                    numerator = -2.0 * a_k * s3 + mixed
+                else:
+                    numerator = (-a_k * (sinh_z - sin_z) + qp * sin_z + pp * sinh_z) / (z * z * z)
+                lattice = numerator / (8.0 * (a_k - pp) * (a_k + qp))
+                t2 = theta * theta
+                g0 = 1.0 / (t2 * t2 - beta4)
+            # K w_0 / d = K G_0 / (d + K S), G_0 and S in units of d^4 / EI*
+            scale = d4 * inv_ei
+            kk = support[p, q] * scale
+            reaction = kk * g0 / (d + kk * lattice)
             for n in range(n_harm):
-                kn = k + shift[n]
-                kn2 = kn * kn
-                den = ei_c * (kn2 * kn2) - mass
-                numerator = (1.0 - reaction) if shift[n] == 0.0 else -reaction
-                value[n] = numerator * den.conjugate() / (den.real**2 + den.imag**2)
+                tn = theta + shift[n] * d
+                tn2 = tn * tn
+                numerator_n = (1.0 - reaction) if shift[n] == 0.0 else -reaction
+                if timoshenko:
+                    den = tn2 * tn2 - qq * tn2 - gg
+                    numerator_n *= eps * tn2 + n0
+                else:
+                    den = tn2 * tn2 - beta4
+                value[n] = scale * numerator_n * den.conjugate() / (den.real**2 + den.imag**2)
             wk, wg = w_kronrod[q] * half[p], w_gauss[q] * half[p]
             for o in range(n_obs):
                 phase = 1.0 + 0j if r[o] == 0.0 else complex(math.cos(k * r[o]), math.sin(k * r[o]))
