@@ -293,6 +293,8 @@ def _checked(
     f_arr = np.atleast_1d(np.asarray(f, dtype=float))
     if f_arr.ndim != 1 or not np.all(np.isfinite(f_arr) & (f_arr >= 0)):
         raise CaseError("frequency", "negative or non-finite values", "finite and >= 0 (Hz)")
+    if f_arr.size == 0:
+        raise CaseError("frequency", "none", "at least one frequency (Hz)")
     try:
         v = float(speed)
     except (TypeError, ValueError):

@@ -197,3 +197,20 @@ def test_compiled_asked_without_the_kernel(monkeypatch):
         moving_load_receptance(NORDBORG, [100.0], 30.0, compiled=True)
     assert err.value.field == "moving.compiled"
     assert "\n" not in str(err.value)
+
+
+def test_no_frequency_refused_in_one_line():
+    with pytest.raises(CaseError) as err:  # was a ValueError from the order check
+        moving_load_receptance(NORDBORG, [], 30.0)
+    assert err.value.field == "frequency"
+    assert "\n" not in str(err.value)
+
+
+def test_frequency_order_does_not_matter():
+    """Frequencies are batched in ascending order and put back where they were given."""
+    f = np.array([1500.0, 3.0, 800.0, 3.0, 0.0])
+    given = moving_load_receptance(NORDBORG, f, 40.0, order=2).amplitudes
+    ascending = np.argsort(f)
+    sorted_ = moving_load_receptance(NORDBORG, f[ascending], 40.0, order=2).amplitudes
+    # the same panels for each frequency (one batch): equal to the last bit
+    np.testing.assert_array_equal(given[ascending], sorted_)
