@@ -88,6 +88,19 @@ OMEGA_FLOOR = 2.0 * np.pi * 1e-9
 #: ``max(|a|, |b|)^2 <= 4``
 _D1_SERIES = np.array([(-1) ** j / math.factorial(2 * j + 3) for j in range(_SERIES_TERMS)])
 
+#: where ``|G_0| > POLE_DOMINANCE |S - G_0|`` (next to the free Euler rail's poles: its
+#: waves, and k = omega = 0 for a static load) the closed-form lattice sum minus G_0
+#: would keep only ~eps x that ratio; the images m != 0 are summed directly there
+POLE_DOMINANCE = 1e3
+
+#: image pairs summed directly (:func:`_euler_images`), and the sum of those beyond
+IMAGES = 64
+_IMAGE_TAIL = (
+    2.0
+    * (np.pi**4 / 90.0 - float(np.sum(1.0 / np.arange(1, IMAGES + 1) ** 4.0)))
+    / (2.0 * np.pi) ** 4
+)
+
 _KERNEL: list[Any] = []
 
 
@@ -247,11 +260,18 @@ def integrand(
             kn**4 - q[..., None] * kn**2 - g[..., None]
         )
         g0 = (eps * (k * d) ** 2 + 1.0 - rho_eps) / ((k * d) ** 4 - q * (k * d) ** 2 - g)
+    rest = lattice - g0  # the images m != 0: digits lost where G_0 dominates ...
+    if len(rail) == 4:
+        near = np.abs(g0) > POLE_DOMINANCE * np.abs(rest)
+        if np.any(near):  # ... so summed directly there
+            rest[near] = _euler_images(k[near] * d, beta4[near])
     scale = d**4 / ei_c  # m/N per unit of the dimensionless sums and G
-    reaction = support * g0 * scale / (d + support * lattice * scale)  # K w_0 / d
-    return np.asarray(
-        gn * scale[..., None] * ((shift == 0) - reaction[..., None]), dtype=np.complex128
-    )
+    kk = support * scale
+    base = d + kk * rest
+    total = base + kk * g0  # d + K S
+    # K w_0 / d = K G_0 / (d + K S), and 1 - K w_0 / d = (d + K (S - G_0)) / (d + K S)
+    factor = np.where(shift == 0, (base / total)[..., None], -(kk * g0 / total)[..., None])
+    return np.asarray(gn * scale[..., None] * factor, dtype=np.complex128)
 
 
 def lattice_sum(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDArray[np.complex128]:
@@ -290,6 +310,19 @@ def lattice_sum(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDArr
     mixed = 0.25 * (_sinc(1j * 0.5 * z) ** 2 * _sinc(z) + _sinc(0.5 * z) ** 2 * _sinc(1j * z))
     numerator = -2.0 * a * s3 + mixed
     return np.asarray(numerator / (8.0 * (a - p) * (a + q)), dtype=np.complex128)
+
+
+def _euler_images(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDArray[np.complex128]:
+    """``sum_(m != 0) 1 / ((kd + 2 pi m)^4 - beta4)`` summed directly (:data:`IMAGES` pairs).
+
+    The images beyond are ``(2 pi m)^-4`` to ``O(kd^2 / m^6)`` (the odd terms cancel in
+    pairs): their sum ``2 (zeta(4) - H_M^(4)) / (2 pi)^4`` leaves < 1e-12 of the result.
+    """
+    m = 2.0 * np.pi * np.arange(1, IMAGES + 1)
+    x = kd[..., None]
+    b = beta4[..., None]
+    pairs = 1.0 / ((x + m) ** 4 - b) + 1.0 / ((x - m) ** 4 - b)
+    return np.asarray(pairs.sum(axis=-1) + _IMAGE_TAIL, dtype=np.complex128)
 
 
 def timoshenko_lattice_sum(
@@ -455,14 +488,23 @@ def _panels(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compil
                 lattice = numerator / (8.0 * (a_k - pp) * (a_k + qp))
                 t2 = theta * theta
                 g0 = 1.0 / (t2 * t2 - beta4)
-            # K w_0 / d = K G_0 / (d + K S), G_0 and S in units of d^4 / EI*
+            rest = lattice - g0  # the images m != 0 (_euler_images where G_0 dominates)
+            if not timoshenko and abs(g0) > POLE_DOMINANCE * abs(rest):
+                rest = _IMAGE_TAIL + 0j
+                for j in range(IMAGES, 0, -1):
+                    xp, xm = theta + 2.0 * math.pi * j, theta - 2.0 * math.pi * j
+                    rest += 1.0 / (xp**4 - beta4) + 1.0 / (xm**4 - beta4)
+            # K w_0 / d = K G_0 / (d + K S), G_0 and S in units of d^4 / EI*, and
+            # 1 - K w_0 / d = (d + K (S - G_0)) / (d + K S)
             scale = d4 * inv_ei
             kk = support[p, q] * scale
-            reaction = kk * g0 / (d + kk * lattice)
+            base = d + kk * rest
+            total = base + kk * g0
+            reaction = kk * g0 / total
             for n in range(n_harm):
                 tn = theta + shift[n] * d
                 tn2 = tn * tn
-                numerator_n = (1.0 - reaction) if shift[n] == 0.0 else -reaction
+                numerator_n = base / total if shift[n] == 0.0 else -reaction
                 if timoshenko:
                     den = tn2 * tn2 - qq * tn2 - gg
                     numerator_n *= eps * tn2 + n0
