@@ -145,7 +145,8 @@ def test_static_load_at_tight_tolerances():
         ).mean[0, 0]
         for qt in (1e-6, 1e-9, 1e-11)
     ]
-    # each within its tolerance of the tightest (x the ~50 panels a frequency refines)
+    # each within its tolerance of the tightest (x the ~50 panels a frequency refines;
+    # measured 5e-13 and 2e-13)
     assert abs(a0[0] - a0[2]) < 1e-4 * abs(a0[2])
     assert abs(a0[1] - a0[2]) < 1e-7 * abs(a0[2])
 
