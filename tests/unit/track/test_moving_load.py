@@ -173,14 +173,3 @@ def test_order_too_low_says_the_order_needed():
     if needed > 2:
         with pytest.raises(CaseError):
             moving_load_receptance(NORDBORG, [1175.0], 60.0, order=needed - 1, tolerance=1e-4)
-
-
-def test_timoshenko_rail_refused():
-    track = PeriodicTrack(
-        Rail(6.62e6, 60.64, shear_stiffness=2.45e8, rotary_inertia=0.25),
-        SpringDamper(5e7, 5e4),
-        0.6,
-    )
-    with pytest.raises(CaseError) as err:
-        moving_load_receptance(track, [100.0], 30.0)
-    assert err.value.field == "track.rail.shear_stiffness"
