@@ -42,6 +42,7 @@ LAYERS = {
     "presets": 5,
     "results": 5,
     "outputs": 5,
+    "moving": 5,
     "case": 6,
     "plot": 7,
     "solve": 8,
