@@ -47,6 +47,7 @@ LAYERS = {
     "plot": 7,
     "solve": 8,
     "trackrun": 8,
+    "movingrun": 8,
     "padfit": 9,
     "models": 9,
     "testing": 9,
