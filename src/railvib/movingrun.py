@@ -172,7 +172,10 @@ def moving_dataset(
                 "peak irregularity giving the lines' contact forces in the stationary model",
             ),
             "static_contact_load": var(
-                lines.contact_force[lines.orders == 0][0].real, ("wheel",), "N", "mean contact force"
+                lines.contact_force[lines.orders == 0][0].real,
+                ("wheel",),
+                "N",
+                "mean contact force",
             ),
         },
         coords={

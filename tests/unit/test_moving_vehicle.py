@@ -52,11 +52,10 @@ def _over_a_bay(system: CoupledSystem, f: np.ndarray, n_pos: int = 64) -> np.nda
     contact-force FRF, ``c_n = (1/d) int H(x0 + xi) exp(-i 2 pi n xi / d) dxi`` (FFT of
     `n_pos` positions: exact for the smooth periodic function to far below the tolerances)."""
     xi = np.arange(n_pos) / n_pos * D
+    x0 = system.leading_wheel_position
     h = np.array(
         [
-            dataclasses.replace(system, leading_wheel_position=(system.leading_wheel_position + x) % D)
-            .frf(f)
-            .contact_force
+            dataclasses.replace(system, leading_wheel_position=(x0 + x) % D).frf(f).contact_force
             for x in xi
         ]
     )
