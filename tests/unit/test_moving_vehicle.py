@@ -100,6 +100,7 @@ def test_parametric_mean_force_carries_the_weight_and_lines_are_real_signals():
     np.testing.assert_allclose(res.line_frequencies_hz, [37.0, 74.0, 111.0])
 
 
+@pytest.mark.slow  # ~2 s: 64 stationary receptances and the moving load at 0.5 m/s
 @pytest.mark.filterwarnings("ignore::railvib.errors.SolverWarning")
 def test_slow_vehicle_rail_deflection_lines_are_the_static_bowl_over_a_bay():
     # at 0.5 m/s the lines lie at n x 0.83 Hz, far below every resonance: the contact forces
@@ -146,6 +147,7 @@ def test_equivalent_roughness_gives_the_lines_in_the_stationary_model():
     np.testing.assert_allclose(force[..., 0], res.contact_force[n], rtol=1e-9)
 
 
+@pytest.mark.slow  # ~2 s: two harmonic balances with 9 wheel gaps
 def test_harmonic_order_converges():
     # the lines at order 3 against order 5 (what order 3 leaves out, and its coupling
     # back, within the tolerance 1e-2 of the largest harmonic the order check enforces)
@@ -156,6 +158,7 @@ def test_harmonic_order_converges():
     )
 
 
+@pytest.mark.slow  # ~1 s: 3 frequencies x 5 harmonics of the moving-load receptance
 def test_averaged_psd_is_close_to_the_stationary_one_away_from_the_lines():
     # at 80 km/h the sleeper-passing modulation is a few percent of the track's receptance:
     # the time-averaged PSD of the contact force stays within 30 % of the stationary PSD
