@@ -124,10 +124,10 @@ def parametric_response(
 
     Examples
     --------
-    >>> from railvib.case import build_system, load_case
-    >>> system = build_system(load_case("wang2017_metro"))
+    >>> from railvib.case import build_system, load_preset_case
+    >>> system = build_system(load_preset_case("wang2017_metro"))
     >>> res = parametric_response(system, MovingSettings(harmonic_order=2))
-    >>> [round(f, 2) for f in res.line_frequencies_hz]
+    >>> [round(float(f), 2) for f in res.line_frequencies_hz]
     [37.04, 74.07]
     """
     settings = MovingSettings() if settings is None else settings
