@@ -83,6 +83,18 @@ class MovingFRF:
         """Displacement response labels."""
         return response_labels(self.dofs, self.harmonics[1].shape[2], self.wheels)
 
+    @property
+    def tail(self) -> float:
+        """Largest ``|H_{+-N}| / max_n |H_n|`` of the contact forces over the grid (dimensionless).
+
+        What the outermost harmonics kept carry, relative to the largest, in the coupled
+        system: an estimate of what the order leaves out (the order check before the run
+        bounds the moving-load receptance's harmonics, this the coupled ones).
+        """
+        size = np.abs(self.harmonics[1]).max(axis=2)  # (n_freq, H)
+        edge = np.maximum(size[:, 0], size[:, -1])
+        return float((edge / np.maximum(size.max(axis=1), np.finfo(float).tiny)).max())
+
     def input_psd(self, spectrum: SpatialSpectrum, f: ArrayLike) -> NDArray[np.float64]:
         """``S_r(|f|)`` in m^2/Hz, 0 below the grid's lowest frequency (left out).
 

@@ -52,6 +52,10 @@ class MovingVehicleFit:
     residual : numpy.ndarray
         RMS misfit of the series over the fit window relative to the RMS of the dynamic
         contact force (dimensionless), ``(n_wheel,)``.
+    history : numpy.ndarray
+        The contact forces over the fit window, N, ``(n_samples, n_wheel)``.
+    sample_rate : float
+        Samples per second of `history`, Hz.
     """
 
     passing_hz: float
@@ -59,6 +63,8 @@ class MovingVehicleFit:
     contact_force: NDArray[np.complex128]
     rail: NDArray[np.complex128]
     residual: NDArray[np.float64]
+    history: NDArray[np.float64]
+    sample_rate: float
 
 
 def simulate_moving_vehicle(
@@ -72,8 +78,9 @@ def simulate_moving_vehicle(
     settle_periods: int,
     fit_periods: int,
     order: int = 3,
+    profile: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
 ) -> MovingVehicleFit:
-    """Integrate the vehicle rolling at `speed` over the finite track on a smooth rail.
+    """Integrate the vehicle rolling at `speed` over the finite track, on a smooth rail or not.
 
     Parameters
     ----------
@@ -94,6 +101,10 @@ def simulate_moving_vehicle(
         Sleeper periods ``d / v`` before the fit, and fitted (counts >= 1).
     order : int
         Harmonics ``|n| <= order`` fitted (a count).
+    profile : (numpy.ndarray, numpy.ndarray), optional
+        An irregularity ``(x, r)`` along the rail (m, m; positive a dip), read at each
+        wheel's position (linear interpolation; it must cover every wheel's path). None:
+        a smooth rail.
 
     Returns
     -------
@@ -113,6 +124,8 @@ def simulate_moving_vehicle(
     path = (x_start - offsets.max(), x_start + n_steps * dt * speed)
     if not (lo < path[0] and path[1] < hi):
         raise CaseError("x_start", x_start, f"a path {path} inside [{lo}, {hi}] (m)")
+    if profile is not None and not (profile[0][0] <= path[0] and path[1] <= profile[0][-1]):
+        raise CaseError("profile", "too short", f"covering the wheels' path {path} (m)")
 
     m_t, c_t, k_t = (a.tocsc() for a in _matrices(track))
     n_t = m_t.shape[0]
@@ -171,6 +184,8 @@ def simulate_moving_vehicle(
         free_v = np.linalg.solve(eff_v, hist_v + weight)
         # P = k_H (B^T u_v - N u_t), u_v = free_v - eff_v^-1 B P, u_t = free_t + unit_t P
         gap = b.T @ free_v - n1 @ free_t
+        if profile is not None:
+            gap -= np.interp(positions(t1), profile[0], profile[1])
         p = np.linalg.solve(np.eye(n_w) / k_h + flex_v + n1 @ unit_t, gap)
         u_t1 = free_t + unit_t @ p
         u_v1 = free_v - np.linalg.solve(eff_v, b @ p)
@@ -191,4 +206,4 @@ def simulate_moving_vehicle(
     dynamic = force - force.mean(axis=0)
     misfit = np.sqrt(np.mean((force - series) ** 2, axis=0))
     residual = misfit / np.maximum(np.sqrt(np.mean(dynamic**2, axis=0)), np.finfo(float).tiny)
-    return MovingVehicleFit(speed / d, orders, p_n, r_n, residual)
+    return MovingVehicleFit(speed / d, orders, p_n, r_n, residual, force, 1.0 / dt)
