@@ -23,12 +23,14 @@ harmonic slot at once gives both:
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from railvib.coupling import CoupledSystem
+from railvib.errors import SolverWarning
 from railvib.moving.harmonic import MovingSettings, check_moving, harmonic_blocks
 from railvib.pem import wheel_delays
 from railvib.response import response_labels
@@ -214,7 +216,7 @@ def moving_frf(
         parts[2].append(np.moveaxis(disp[:, n, :, ::-1], 2, 1))
         parts[3].append(np.moveaxis(force[:, n, :, ::-1], 2, 1))
     d_h, f_h, d_a, f_a = (np.concatenate(p) for p in parts)
-    return MovingFRF(
+    out = MovingFRF(
         f,
         passing,
         system.speed,
@@ -224,3 +226,13 @@ def moving_frf(
         system.vehicle.dofs,
         system.vehicle.wheel_names,
     )
+    if out.tail > settings.tolerance:
+        warnings.warn(
+            f"the coupled contact-force harmonics |n| = {n} reach {out.tail:.2g} of the largest "
+            f"(above moving.tolerance = {settings.tolerance:g}): what the order leaves out is "
+            "not negligible there (near the split pinned-pinned peaks f_pp +- v/(2d), or v/d "
+            "near the wheel-track resonance); raise moving.harmonic_order",
+            SolverWarning,
+            stacklevel=2,
+        )
+    return out
