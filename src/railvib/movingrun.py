@@ -12,6 +12,7 @@ is enough (docs/moving-vehicle.md).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -21,7 +22,7 @@ from numpy.typing import NDArray
 
 from railvib.case import Case, build_grid, build_spectrum, build_system, case_header, load_case
 from railvib.coupling import CoupledSystem
-from railvib.errors import CaseError
+from railvib.errors import CaseError, PlausibilityWarning
 from railvib.grid import FrequencyGrid
 from railvib.io import railvib_version, staged_folder, write_text
 from railvib.labels import displacement_unit
@@ -31,6 +32,7 @@ from railvib.results.dataset import check_finite, save_netcdf
 from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
+    "MANY_LOAD_FREQUENCIES",
     "MOVING_FILES",
     "MovingOutput",
     "moving_dataset",
@@ -48,6 +50,10 @@ MOVING_FILES = (
     "moving_psd.png",
     "moving_lines.png",
 )
+
+#: more moving-load frequencies ((2N+1) x grid points) than this and a run warns of its
+#: cost (some 0.01-0.05 s of CPU each: a quarter of an hour at this count)
+MANY_LOAD_FREQUENCIES = 20_000
 
 #: a band whose moving and stationary mean squares differ by less than this (dB) is one
 #: where the stationary model is enough (the spread of a PSD estimate from a few minutes
@@ -72,6 +78,18 @@ def _prepared(
     grid = build_grid(case)
     settings, phases = _settings(case)
     check_moving(system, float(grid.f.max()), settings, float(grid.f.min()))
+    loads = grid.f.size * (2 * settings.harmonic_order + 1)
+    if loads > MANY_LOAD_FREQUENCIES:
+        warnings.warn(
+            PlausibilityWarning(
+                "frequency",
+                f"{grid.f.size} frequencies",
+                f"x {2 * settings.harmonic_order + 1} harmonics = {loads} moving-load "
+                "frequencies, some 0.01-0.05 s of CPU each (docs/moving-vehicle.md, Cost): "
+                "a log grid of a few hundred points is usually enough",
+            ),
+            stacklevel=2,
+        )
     return system, grid, build_spectrum(case), settings, phases
 
 
@@ -246,7 +264,15 @@ def run_moving(case: Case | str | Path) -> xr.Dataset:
     """
     if not isinstance(case, Case):
         case = load_case(case)
-    system, grid, spectrum, settings, phases = _prepared(case)
+    return _computed(case, _prepared(case))
+
+
+def _computed(
+    case: Case,
+    prepared: tuple[CoupledSystem, FrequencyGrid, SpatialSpectrum, MovingSettings, int],
+) -> xr.Dataset:
+    """The dataset of a checked case (:func:`_prepared`)."""
+    system, grid, spectrum, settings, phases = prepared
     attrs = {"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model}
     ds = moving_dataset(system, grid, spectrum, settings, phases=phases, attrs=attrs)
     check_finite(ds.drop_vars([v for v in ds.data_vars if "band_difference" in str(v)]))
@@ -380,9 +406,9 @@ def run_moving_to_folder(
     """
     if not isinstance(case, Case):
         case = load_case(case)
-    _prepared(case)  # every check before the folder is touched
+    prepared = _prepared(case)  # every check before the folder is touched
     with staged_folder(outdir, MOVING_FILES) as stage:
-        ds = run_moving(case)
+        ds = _computed(case, prepared)
         lines = [*case_header(case), *moving_summary_lines(ds)]
         files = [
             save_netcdf(ds, stage.path / "results.nc"),

@@ -6,9 +6,14 @@ variables, with the summary's moving-against-stationary table.
 
 from __future__ import annotations
 
+import warnings
+
 import pytest
 
+from railvib.case import case_from_dict
 from railvib.cli.main import main
+from railvib.errors import PlausibilityWarning
+from railvib.movingrun import run_moving_to_folder
 from railvib.results.dataset import load_netcdf
 
 GRID = '[frequency]\nspacing = "log"\nf_min = 5.0\nf_max = {f_max}\nn = {n}\n'
@@ -86,3 +91,21 @@ def test_moving_run_writes_lines_and_psds_apart(tmp_path, monkeypatch, capsys):
     assert ds.contact_force_psd.dims == ("frequency", "wheel")
     assert ds.psd_over_period.dims == ("phase", "frequency", "response")
     assert ds.line_frequency.values.tolist() == pytest.approx([37.037, 74.074], rel=1e-4)
+
+
+def test_a_costly_grid_warns_before_computing(tmp_path):
+    # 3000 frequencies x 7 harmonics = 21 000 moving-load frequencies (minutes of CPU): a
+    # one-line PlausibilityWarning naming the field, before anything is computed; escalated
+    # to an error (as -W error does) it leaves nothing behind
+    case = case_from_dict(
+        {
+            "preset": "wang2017_metro",
+            "mode": "moving",
+            "frequency": {"spacing": "log", "f_min": 5.0, "f_max": 200.0, "n": 3000},
+        }
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        with pytest.raises(PlausibilityWarning, match=r"^frequency = '3000 frequencies': x 7"):
+            run_moving_to_folder(case, tmp_path / "out")
+    assert not (tmp_path / "out").exists()
