@@ -13,12 +13,12 @@ is enough (docs/moving-vehicle.md).
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from railvib.case import Case, build_grid, build_spectrum, build_system, case_header, load_case
 from railvib.coupling import CoupledSystem
@@ -36,6 +36,7 @@ __all__ = [
     "MOVING_FILES",
     "MovingOutput",
     "moving_dataset",
+    "moving_speed_sweep",
     "moving_summary_lines",
     "run_moving",
     "run_moving_to_folder",
@@ -241,6 +242,69 @@ def _band_variables(ds: xr.Dataset) -> dict[str, xr.DataArray]:
                 "long_name": "moving minus stationary mean square in the band",
             },
         )
+    return out
+
+
+def moving_speed_sweep(
+    system: CoupledSystem,
+    grid: FrequencyGrid,
+    spectrum: SpatialSpectrum,
+    speeds: ArrayLike,
+    settings: MovingSettings,
+    *,
+    random: bool = True,
+) -> xr.Dataset:
+    """Where the moving vehicle departs from the stationary one: lines and bands over speed.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track, contact (N/m) and leading wheel position (m); its speed is replaced.
+    grid : FrequencyGrid
+        Frequencies, Hz (the random part).
+    spectrum : SpatialSpectrum
+        Irregularity spectrum (the random part).
+    speeds : array_like
+        Speeds, m/s, ``(n_speed,)``; each checked by :func:`~railvib.moving.check_moving`.
+    settings : MovingSettings
+        Harmonic order and tolerance.
+    random : bool
+        Also the random PSDs' band differences (costly: :func:`moving_dataset` per speed);
+        False: the sleeper-passing lines only.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``contact_force_line_amplitude`` (speed, line, wheel), ``line_frequency`` (speed,
+        line); with `random`, ``contact_force_band_difference_db`` and ``band_difference_db``
+        (speed, band, ...).
+    """
+    v = np.atleast_1d(np.asarray(speeds, dtype=float))
+    parts = []
+    for speed in v:
+        at = replace(system, speed=float(speed))
+        check_moving(at, float(grid.f.max()) if random else 0.0, settings, float(grid.f.min()))
+        if random:
+            ds = moving_dataset(at, grid, spectrum, settings, phases=1)
+            keep = [k for k in ds.data_vars if "line" in str(k) or "band_difference" in str(k)]
+            parts.append(ds[keep])
+        else:
+            lines = parametric_response(at, settings, check=False)
+            parts.append(
+                xr.Dataset(
+                    {
+                        "line_frequency": ("line", lines.line_frequencies_hz),
+                        "contact_force_line_amplitude": (
+                            ("line", "wheel"),
+                            lines.amplitude("contact_force"),
+                        ),
+                    },
+                    coords={"line": lines.lines, "wheel": np.arange(1, lines.rail.shape[1] + 1)},
+                )
+            )
+    out = xr.concat(parts, dim="speed").assign_coords(speed=("speed", v, {"units": "m/s"}))
+    out["contact_force_line_amplitude"].attrs.update(units="N", long_name="peak line amplitude")
+    out["line_frequency"].attrs.update(units="Hz", long_name="sleeper-passing line n v/d")
     return out
 
 

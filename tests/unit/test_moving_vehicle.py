@@ -17,10 +17,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from railvib.case import build_system, load_case
+from railvib.case import build_grid, build_spectrum, build_system, load_case
 from railvib.coupling import CoupledSystem, coupled_response
 from railvib.errors import CaseError, SolverWarning
 from railvib.moving import MovingSettings, check_moving, moving_frf, parametric_response
+from railvib.movingrun import moving_speed_sweep
 from railvib.pads import SpringDamper
 from railvib.spectra import SPECTRA
 from railvib.track import BallastedTrack, PeriodicTrack, Rail
@@ -276,3 +277,21 @@ def test_coupled_tail_above_the_tolerance_warns():
     with pytest.warns(SolverWarning, match="raise moving.harmonic_order"):
         mov = moving_frf(_system(22.2), [1430.0], MovingSettings(2))
     assert mov.tail > 1e-2
+
+
+@pytest.mark.slow  # 13 harmonic balances of the lines: ~3 s
+def test_sleeper_passing_line_peaks_where_v_over_d_meets_the_wheel_track_resonance():
+    # the issue: parametric excitation dominates when v/d approaches the wheel-track
+    # resonance. Reference: the peak of the stationary contact-force FRF (the stationary
+    # solver), 43.8 Hz on the metro preset; the line at v/d peaks within one speed step
+    case = load_case(PRESETS / "wang2017_metro.toml")
+    system = build_system(case)
+    speeds = np.arange(10.0, 75.0, 5.0)
+    sweep = moving_speed_sweep(
+        system, build_grid(case), build_spectrum(case), speeds, MovingSettings(2), random=False
+    )
+    peak = speeds[int(np.argmax(sweep.contact_force_line_amplitude.values[:, 0, 0]))]
+    f = np.linspace(10.0, 200.0, 400)
+    f_res = f[int(np.argmax(np.abs(system.frf(f).contact_force[:, 0])))]
+    d = system.track.sleeper_spacing
+    assert abs(peak / d - f_res) <= 5.0 / d  # measured 41.7 Hz at 25 m/s against 43.8 Hz
