@@ -9,6 +9,7 @@ import pytest
 import railvib
 import railvib.contact
 import railvib.grid
+import railvib.moving.parametric
 import railvib.solve
 import railvib.track.moving
 import railvib.track.periodic
@@ -25,6 +26,7 @@ README = ROOT / "README.md"
         "docs/user-guide.md",
         "docs/extending.md",
         "docs/moving-load.md",
+        "docs/moving-vehicle.md",
         "docs/slab-track.md",
     ],
 )
@@ -53,6 +55,7 @@ def test_readme_opens_with_the_two_commands():
         railvib.contact,
         railvib.track.periodic,
         railvib.track.moving,
+        railvib.moving.parametric,
         railvib.track.slab,
         railvib.solve,
     ],

@@ -14,6 +14,7 @@ from typing import Any, Literal
 import tomli_w
 from pydantic import Field, create_model, field_validator, model_validator
 
+from railvib.case.moving import MovingSection
 from railvib.case.profile import NonstationarySection, SpeedProfileSection, check_time_step
 from railvib.case.sections import Section, section_model, table_section
 from railvib.errors import CaseError
@@ -451,16 +452,21 @@ class Case(Section):
     criteria: CriteriaSection | None = Field(
         None, description="settings of the engineering criteria (docs/criteria.md)"
     )
-    mode: Literal["stationary", "nonstationary"] = Field(
+    mode: Literal["stationary", "nonstationary", "moving"] = Field(
         "stationary",
         description="stationary: one speed (speed_kmh); nonstationary: the speed of "
-        "[speed_profile] (docs/nonstationary.md)",
+        "[speed_profile] (docs/nonstationary.md); moving: the vehicle moving over the "
+        "sleepers at speed_kmh, sleeper-passing lines and cyclostationary PSDs "
+        "(docs/moving-vehicle.md)",
     )
     speed_profile: SpeedProfileSection | None = Field(
         None, description='speed against time, for mode = "nonstationary"'
     )
     nonstationary: NonstationarySection | None = Field(
         None, description="settings of a non-stationary run (omitted: the defaults)"
+    )
+    moving: MovingSection | None = Field(
+        None, description='settings of a mode = "moving" run (omitted: the defaults)'
     )
 
     @model_validator(mode="after")
@@ -477,6 +483,10 @@ class Case(Section):
             field = "speed_profile" if self.speed_profile is not None else "nonstationary"
             raise CaseError(
                 field, "<table>", 'used by mode = "nonstationary" only: set mode, or remove it'
+            )
+        if self.moving is not None and self.mode != "moving":
+            raise CaseError(
+                "moving", "<table>", 'used by mode = "moving" only: set mode, or remove it'
             )
         return self
 

@@ -42,6 +42,13 @@ def run_case_command(
 
         run_nonstationary_command(case, outdir, plots=plots)
         return
+    if case.mode == "moving":  # docs/moving-vehicle.md
+        from railvib.movingrun import run_moving_to_folder
+
+        moving = run_moving_to_folder(case, outdir, plots=plots)
+        click.echo(moving.text())
+        click.echo(f"written to {outdir}/")
+        return
     out = run_to_folder(case, outdir, plots=plots, force=force)
     click.echo(out.text())
     click.echo(f"written to {outdir}/")

@@ -1,0 +1,304 @@
+"""Harmonic balance of the vehicle moving over the periodic track.
+
+Wheel ``i`` runs at ``x_i(t) = x_i + v t`` (``x_i`` its position at ``t = 0``, sleepers at
+``j d``). A contact force ``P_i exp(i Omega t)`` moving with it deflects the rail at wheel
+``j``, ``r_ji = x_j - x_i`` ahead of it, by (:mod:`railvib.track.moving`, whose load stands
+on a sleeper at ``t = 0``; wheel ``i`` passes one at ``-x_i / v``)::
+
+    u_j(t) = P_i exp(i Omega t) sum_n A_n(Omega, r_ji) exp(i n phi_i) exp(i n Omega_s t),
+    phi_i = 2 pi x_i / d,   Omega_s = 2 pi v / d.
+
+With the contact forces a harmonic series on ``Omega + m Omega_s`` (``m = -N .. N``), the
+rail under the wheels is the same series with the blocks
+
+    R[q, m]_ji = A_{q-m}(Omega + m Omega_s, r_ji) exp(i (q - m) phi_i),   |q - m| <= N,
+
+and the vehicle (condensed onto its wheels, ``S`` at each ``Omega + m Omega_s``) and the
+linear Hertz springs close the system as in the stationary model
+(:func:`railvib.coupling.coupled_response`)::
+
+    (I + (R + I / k_H) S) u_w = r + (R + I / k_H)[:, 0] G,   P = G delta_m0 - S u_w,
+
+``r`` the irregularity at the wheels per harmonic and ``G`` the static wheel loads (the
+parametric problem, on the constant harmonic ``Omega = 0``). Negative frequencies are
+those of the real system: ``A_n(-Omega) = conj A_{-n}(Omega)``, ``S(-Omega) = conj S(Omega)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from railvib.coupling import CoupledSystem
+from railvib.errors import CaseError
+from railvib.track.moving import (
+    MAX_HARMONIC_ORDER,
+    SPEED_FRACTION,
+    critical_speed,
+    moving_load_receptance,
+)
+from railvib.track.periodic import PeriodicTrack
+
+__all__ = [
+    "DEFAULT_ORDER",
+    "DEFAULT_TOLERANCE",
+    "HarmonicSystem",
+    "MovingSettings",
+    "check_moving",
+    "harmonic_blocks",
+]
+
+#: default harmonic order N: the moving-load harmonics |n| >= 2 are below 1e-3 of A_0 on
+#: ballasted track away from the split pinned-pinned peaks (docs/moving-load.md)
+DEFAULT_ORDER = 3
+
+#: default largest harmonic left out, relative to the largest (dimensionless)
+DEFAULT_TOLERANCE = 1e-2
+
+#: frequencies of the order probe run before the whole computation
+_PROBE = 12
+
+
+@dataclass(frozen=True)
+class MovingSettings:
+    """The ``[moving]`` settings: the harmonic order and the tolerance on its tail.
+
+    Parameters
+    ----------
+    harmonic_order : int
+        N: contact forces at ``f + m v / d``, ``|m| <= N`` (a count, 1 .. 50).
+    tolerance : float
+        Largest harmonic left out, relative to the largest one (dimensionless, in (0, 1)).
+    """
+
+    harmonic_order: int = DEFAULT_ORDER
+    tolerance: float = DEFAULT_TOLERANCE
+
+    def __post_init__(self) -> None:
+        n = self.harmonic_order
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+            raise CaseError("moving.harmonic_order", n, f"an integer 1..{MAX_HARMONIC_ORDER}")
+        if not 1 <= n <= MAX_HARMONIC_ORDER:
+            raise CaseError("moving.harmonic_order", n, f"an integer 1..{MAX_HARMONIC_ORDER}")
+        tol = self.tolerance
+        if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not 0.0 < tol < 1.0:
+            raise CaseError("moving.tolerance", tol, "a number between 0 and 1, exclusive (-)")
+
+
+def check_moving(
+    system: CoupledSystem, f_max: float, settings: MovingSettings, f_min: float = 0.0
+) -> None:
+    """Refuse, before computing, what the moving-vehicle model cannot do, in one line each.
+
+    A track without the moving-load formulation (a slab track, a Timoshenko rail), a speed
+    above :data:`~railvib.track.moving.SPEED_FRACTION` of the critical speed (the series
+    in the sleeper-passing harmonics stops converging towards it), and a harmonic order
+    too low for the speed and band: the moving-load receptance is computed at a few
+    frequencies up to ``f_max + N v / d`` and the order needed is named.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track, contact and speed (m/s).
+    f_max : float
+        Highest frequency of the run, Hz.
+    f_min : float
+        Lowest frequency of the run, Hz (0: the constant load of the parametric problem).
+    settings : MovingSettings
+        Harmonic order and tolerance.
+
+    Raises
+    ------
+    CaseError
+        ``track.model``, ``track.rail.shear_stiffness``, ``speed_kmh`` or
+        ``moving.harmonic_order``.
+    """
+    track = system.track
+    try:
+        track.support_stiffness(np.array([1.0]))
+    except CaseError:
+        raise CaseError(
+            "track.model",
+            type(track).__name__,
+            "a track with independent supports under the rail (rigid_base, ballasted) for "
+            "mode = 'moving': the moving-load formulation needs the support of one rail seat",
+        ) from None
+    if track.rail.is_timoshenko:
+        raise CaseError(
+            "track.rail.shear_stiffness",
+            track.rail.shear_stiffness,
+            "omitted for mode = 'moving' (an Euler-Bernoulli rail: the moving-load "
+            "formulation uses its free-beam Green's function) (N)",
+        )
+    bound = SPEED_FRACTION * critical_speed(track)
+    if not system.speed <= bound:
+        raise CaseError(
+            "speed_kmh",
+            round(system.speed * 3.6, 6),
+            f"at most {bound * 3.6:.4g} km/h for mode = 'moving' ({SPEED_FRACTION:g} x the "
+            "track's critical speed: towards it the sleeper-passing series does not converge)",
+        )
+    n = settings.harmonic_order
+    top = float(f_max) + n * system.speed / track.sleeper_spacing
+    probe = np.linspace(float(f_min), top, _PROBE)
+    moving_load_receptance(track, probe, system.speed, order=n, tolerance=settings.tolerance)
+
+
+@dataclass(frozen=True, eq=False)
+class HarmonicSystem:
+    """The harmonic-balance blocks of the moving vehicle at a stack of base frequencies.
+
+    Attributes
+    ----------
+    f : numpy.ndarray
+        Base frequencies, Hz, ``(n_freq,)``; harmonic ``m`` is at ``f + m v / d``.
+    passing_hz : float
+        Sleeper-passing frequency ``v / d``, Hz.
+    orders : numpy.ndarray
+        ``-N .. N``.
+    receptance : numpy.ndarray
+        ``R``, m/N, ``(n_freq, H, n_w, H, n_w)`` (``H = 2 N + 1``): rail displacement at
+        wheel ``j``, harmonic ``q``, per contact force at wheel ``i``, harmonic ``m``.
+    stiffness : numpy.ndarray
+        Vehicle condensed on its wheels at each harmonic, N/m, ``(n_freq, H, n_w, n_w)``.
+    recovery : numpy.ndarray
+        Vehicle DOFs per wheel displacement at each harmonic, ``(n_freq, H, n_dof, n_w)``.
+    contact_stiffness : float
+        k_H, N/m.
+    """
+
+    f: NDArray[np.float64]
+    passing_hz: float
+    orders: NDArray[np.int64]
+    receptance: NDArray[np.complex128]
+    stiffness: NDArray[np.complex128]
+    recovery: NDArray[np.complex128]
+    contact_stiffness: float
+
+    @property
+    def frequencies(self) -> NDArray[np.float64]:
+        """``f + m v / d``, Hz, ``(n_freq, H)``."""
+        return self.f[:, None] + self.orders[None, :] * self.passing_hz
+
+    def solve(
+        self, excitation: NDArray[np.complex128], static_loads: ArrayLike | None = None
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128]]:
+        """Vehicle, contact-force and rail harmonics for irregularity harmonics at the wheels.
+
+        Parameters
+        ----------
+        excitation : numpy.ndarray
+            Irregularity at each wheel per harmonic, m, ``(n_freq, H, n_w, n_rhs)``.
+        static_loads : array_like, optional
+            Static wheel loads ``G`` in N, ``(n_w,)``, acting on harmonic 0 (the parametric
+            problem, base frequency 0); None: none.
+
+        Returns
+        -------
+        vehicle, contact_force, rail : numpy.ndarray
+            ``(n_freq, H, n_dof, n_rhs)`` (m, rad), ``(n_freq, H, n_w, n_rhs)`` (N),
+            ``(n_freq, H, n_w, n_rhs)`` (m).
+        """
+        n_f, h, n_w = self.stiffness.shape[:3]
+        size = h * n_w
+        rec = self.receptance.reshape(n_f, size, h, n_w)
+        flex = rec.copy()
+        idx = np.arange(n_w)
+        for m in range(h):
+            flex[:, m * n_w + idx, m, idx] += 1.0 / self.contact_stiffness
+        system = np.einsum("fams,fmsi->fami", flex, self.stiffness).reshape(n_f, size, size)
+        system[:, np.arange(size), np.arange(size)] += 1.0
+        rhs = excitation.reshape(n_f, size, -1).astype(np.complex128)
+        centre = h // 2
+        g = None
+        if static_loads is not None:
+            g = np.asarray(static_loads, dtype=float)
+            rhs = rhs + np.einsum("fas,s->fa", flex[:, :, centre, :], g)[..., None]
+        u_w = np.linalg.solve(system, rhs).reshape(n_f, h, n_w, -1)
+        force = -np.einsum("fmis,fmsk->fmik", self.stiffness, u_w)
+        if g is not None:
+            force[:, centre] += g[None, :, None]
+        rail = np.einsum("fqjmi,fmik->fqjk", self.receptance, force)
+        vehicle = np.einsum("fmds,fmsk->fmdk", self.recovery, u_w)
+        return vehicle, force, rail
+
+
+def harmonic_blocks(
+    system: CoupledSystem, f: ArrayLike, settings: MovingSettings
+) -> HarmonicSystem:
+    """The harmonic-balance blocks at base frequencies `f` (Hz).
+
+    Computes the moving-load receptance at every ``|f + m v / d|`` (once per distinct
+    value) between every pair of wheels, and the vehicle's condensed stiffness there.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track, contact stiffness (N/m), leading wheel position (m) and speed (m/s).
+    f : array_like
+        Base frequencies, Hz, ``(n_freq,)`` (any sign).
+    settings : MovingSettings
+        Harmonic order and tolerance.
+
+    Returns
+    -------
+    HarmonicSystem
+    """
+    f = np.atleast_1d(np.asarray(f, dtype=float))
+    track: PeriodicTrack = system.track
+    n = settings.harmonic_order
+    orders = np.arange(-n, n + 1)
+    h = orders.size
+    passing = system.speed / track.sleeper_spacing
+    freqs = f[:, None] + orders[None, :] * passing  # (n_f, H) signed load frequencies
+    x = system.wheel_positions
+    n_w = x.size
+    gaps = x[:, None] - x[None, :]  # r_ji: wheel j ahead of the load at wheel i
+    r, pair = np.unique(np.round(gaps, 9), return_inverse=True)
+    pair = pair.reshape(n_w, n_w)
+    amp = _signed_receptance(track, freqs.ravel(), system.speed, n, r, settings.tolerance)
+    amp = amp.reshape(f.size, h, r.size, h)  # [k, m, r, n + N]
+    phase = np.exp(1j * np.outer(orders, 2.0 * np.pi * x / track.sleeper_spacing))  # [n, i]
+    rec = np.zeros((f.size, h, n_w, h, n_w), dtype=np.complex128)
+    for q in range(h):
+        for m in range(h):
+            k = q - m
+            if abs(k) > n:
+                continue
+            block = amp[:, m, :, k + n][:, pair]  # (n_f, n_w[j], n_w[i])
+            rec[:, q, :, m, :] = block * phase[k + n][None, None, :]
+    cond = system.vehicle.condensed_to_wheels(np.abs(freqs.ravel()))
+    negative = (freqs.ravel() < 0.0)[:, None, None]
+    stiffness = np.where(negative, np.conj(cond.stiffness), cond.stiffness)
+    recovery = np.where(negative, np.conj(cond.recovery), cond.recovery)
+    n_dof = recovery.shape[1]
+    return HarmonicSystem(
+        f,
+        passing,
+        orders,
+        rec,
+        stiffness.reshape(f.size, h, n_w, n_w),
+        recovery.reshape(f.size, h, n_dof, n_w),
+        system.contact_stiffness,
+    )
+
+
+def _signed_receptance(
+    track: PeriodicTrack,
+    freqs: NDArray[np.float64],
+    speed: float,
+    order: int,
+    r: NDArray[np.float64],
+    tolerance: float,
+) -> NDArray[np.complex128]:
+    """``A_n(F, r)`` at signed load frequencies `freqs`, m/N, ``(n, n_r, 2 N + 1)``.
+
+    Computed once per distinct ``|F|``; ``A_n(-F) = conj A_{-n}(F)`` (a real system).
+    """
+    mag, back = np.unique(np.round(np.abs(freqs), 9), return_inverse=True)
+    res = moving_load_receptance(track, mag, speed, order=order, r=r, tolerance=tolerance)
+    amp = res.amplitudes[back.ravel()]
+    negative = (freqs < 0.0)[:, None, None]
+    return np.asarray(np.where(negative, np.conj(amp[:, :, ::-1]), amp), dtype=np.complex128)
