@@ -246,14 +246,14 @@ def _coupled_entries(
     """
     s = vehicle.stiffness_entries
     n = len(rec)
+    # the identities added on the diagonals only (an off-diagonal "+ 0.0" is a copy)
     flex = [
-        [rec[a][b] + (1.0 / contact_stiffness if a == b else 0.0) for b in range(n)]
+        [rec[a][b] + 1.0 / contact_stiffness if a == b else rec[a][b] for b in range(n)]
         for a in range(n)
     ]
-    system = [
-        [dot(flex[a], [s[c][b] for c in range(n)]) + (1.0 if a == b else 0.0) for b in range(n)]
-        for a in range(n)
-    ]
+    system = [[dot(flex[a], [s[c][b] for c in range(n)]) for b in range(n)] for a in range(n)]
+    for a in range(n):
+        system[a][a] = system[a][a] + 1.0
     rhs = [excitation[:, :, a] for a in range(n)]
     u_w, bad = solve(system, rhs, xp)
     if bool(xp.any(bad)):  # pivots too small for elimination without exchanges: LAPACK
