@@ -96,6 +96,11 @@ def finite_at_equal_accuracy(
         if err <= EQUAL_ACCURACY:
             chosen = i
             break
+    print(
+        f"goal: the finite track timed at equal accuracy ({EQUAL_ACCURACY:g} of each "
+        f"response's peak), with repeats: {'PASS' if chosen is not None else 'FAIL'}"
+        + ("" if chosen is not None else " (no mesh tried reaches it)")
+    )
     default = MESHES.index((60, 8))
     rows = [("coarsest at equal accuracy", chosen), ("default validation mesh", default)]
     pem_per_f = float(np.median(pem_times)) / f.size
