@@ -6,7 +6,9 @@
   (row views), at one speed (one broadcast excitation) and at mixed speeds, against each
   case solved alone (``CoupledSystem.frf``);
 * a worker's per-sweep context: two sweeps computed alternately in one process each give
-  their own results, the same as in a fresh process's first chunk.
+  their own results, the same as in a fresh process's first chunk; a data file edited
+  between two runs of the same sweep in one process is read again (the context keeps
+  nothing read from a file).
 """
 
 import numpy as np
@@ -103,3 +105,28 @@ def test_two_sweeps_computed_alternately_in_one_process_keep_their_own_results()
     for name in first_a:
         assert np.array_equal(again_a[name], first_a[name]), name
         assert np.array_equal(again_b[name], first_b[name]), name
+
+
+def _write_irregularity(path, level):
+    path.write_text(
+        "wavenumber_rad_per_m,psd_m2_per_rad_per_m\n"
+        + "".join(f"{k},{level * k**-3:.6e}\n" for k in (0.01, 0.1, 1.0, 10.0, 100.0))
+    )
+
+
+@pytest.mark.slow
+def test_a_data_file_edited_between_two_runs_in_one_process_is_read_again(tmp_path):
+    table = tmp_path / "irregularity.csv"
+    _write_irregularity(table, 1e-9)
+    d = small_sweep()
+    d["case"]["irregularity"] = {"type": "tabulated", "path": str(table)}
+    spec = sweep_from_dict(d)
+    before = compute_chunk(spec, 0)
+    _write_irregularity(table, 4e-9)  # four times the PSD (and another file size)
+    after = compute_chunk(spec, 0)  # the same spec: the worker's context holds no file data
+    sweep_batch._CONTEXT.clear()
+    fresh = compute_chunk(spec, 0)
+    for name in fresh:
+        assert np.array_equal(after[name], fresh[name]), name
+    # reason: every PSD is linear in the irregularity PSD, which is 4x everywhere
+    np.testing.assert_allclose(after["psd_acceleration"], 4 * before["psd_acceleration"], rtol=1e-6)
