@@ -11,9 +11,11 @@ contact differ but whose track and wheel positions agree still share ``R``.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import json
+from collections import OrderedDict
 from collections.abc import Mapping, Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -158,6 +160,75 @@ def _key(d: Any) -> str:
     return json.dumps(d, sort_keys=True)
 
 
+@dataclass(frozen=True)
+class _Built:
+    """A structural group's first case, validated and built (shared by its cases)."""
+
+    case: Case
+    system: CoupledSystem
+    static_loads: NDArray[np.float64]
+    pad_factor: float  # rail_pair doubles the pad: the same table under another reading
+    suffix: str  # what the group's track keys add to the track table (reading, positions)
+
+
+@dataclass
+class _Context:
+    """What every chunk of one sweep shares, made once per process (a worker runs many)."""
+
+    layout: SweepLayout
+    base: dict[str, Any]
+    f: NDArray[np.float64]
+    criteria: dict[str, dict[str, Any]]
+    groups: OrderedDict[str, _Built] = dataclasses.field(default_factory=OrderedDict)
+
+    def built(self, key: str, case_dict: dict[str, Any]) -> _Built:
+        """The group `key` of case `case_dict` built (the most recent groups are kept)."""
+        if key in self.groups:
+            self.groups.move_to_end(key)
+            return self.groups[key]
+        case = case_from_dict(case_dict, warn=False)
+        system = build_system(case)
+        pad = system.track.pad
+        out = _Built(
+            case,
+            system,
+            np.asarray(system.vehicle.static_wheel_loads(), dtype=float),
+            pad.factor if isinstance(pad, ScaledPad) else 1.0,
+            _key([case_dict["rail_model"], system.wheel_positions.tolist()]),
+        )
+        self.groups[key] = out
+        if len(self.groups) > _GROUPS_KEPT:
+            self.groups.popitem(last=False)
+        return out
+
+
+#: structural groups kept built per process (a chunk of a sweep over pads, temperatures
+#: and speeds is one group, the same in every chunk; a chunk of a rail x vehicle sweep has
+#: as many as cases)
+_GROUPS_KEPT = 64
+
+#: the context of the sweep this process computes chunks of, by the (frozen, hashable) spec:
+#: each task brings its own copy of the spec, equal to the last one
+_CONTEXT: dict[SweepSpec, _Context] = {}
+
+#: contexts kept per process: a sweep over train lengths solves each length as a sweep of
+#: its own, chunk after chunk
+_CONTEXTS_KEPT = 64
+
+
+def _context(spec: SweepSpec) -> _Context:
+    """The chunks' shared context of `spec` (made at this process's first chunk of it)."""
+    if spec not in _CONTEXT:
+        if len(_CONTEXT) >= _CONTEXTS_KEPT:
+            _CONTEXT.clear()  # one sweep at a time (its train lengths each their own)
+        base = spec.base_case_dict()
+        case = case_from_dict(base, warn=False)
+        f = build_grid(case).f
+        criteria = criteria_settings(case, build_system(case), f)
+        _CONTEXT[spec] = _Context(SweepLayout(spec), base, f, criteria)
+    return _CONTEXT[spec]
+
+
 def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     """Solve every case of one chunk of a sweep, batching cases that share structure.
 
@@ -187,13 +258,12 @@ def compute_chunk(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
 
 def _compute_layout(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     """:func:`compute_chunk` of cases that share one response and wheel layout."""
-    layout = SweepLayout(spec)
-    base = spec.base_case_dict()
-    f = build_grid(case_from_dict(base, warn=False)).f
-    cases, groups = _chunk_cases(spec, layout, chunk_id)
+    context = _context(spec)
+    layout, f = context.layout, context.f
+    cases, groups = _chunk_groups(spec, layout, chunk_id, context.base)
     # the compiled wave kernel where the whole sweep pays for loading it
     compiled = use_compiled(len(cases) * f.size, work=layout.n_cases * f.size)
-    frf, s_r, loads = _solve_groups(f, cases, groups, compiled)
+    frf, s_r, loads = _solve_groups(context, cases, groups, compiled)
     needed = dict.fromkeys([*spec.variables, "psd_force", spec.summary_variable])
     values = compute_variables(frf, s_r, needed)  # each variable computed once
     out: dict[str, NDArray[Any]] = {name: values[name] for name in spec.variables}
@@ -213,18 +283,26 @@ def _summary(
     """:func:`railvib.results.stats.summary` of PSDs ``(n_case, n_freq, n_resp)`` in NumPy.
 
     The same operations on the same values (maximum, first frequency of the maximum,
-    trapezoidal rule over the grid points in each band), without labelled arrays.
+    trapezoidal rule over the grid points in each band), without labelled arrays: the
+    trapezoids' terms are formed once and each band sums its own run of them (the terms
+    :func:`railvib.grid.trapezoid` of the band's points forms, summed in the same order).
     """
+    first = psd.argmax(axis=1)
+    terms = (f[1:] - f[:-1])[None, :, None] * (psd[:, 1:] + psd[:, :-1]) / 2.0
     out = {
-        "summary/peak": psd.max(axis=1),
-        "summary/dominant_frequency": f[psd.argmax(axis=1)],
-        "summary/rms": np.sqrt(trapezoid(psd, f, axis=1)),
+        "summary/peak": np.take_along_axis(psd, first[:, None], axis=1)[:, 0],
+        "summary/dominant_frequency": f[first],
+        "summary/rms": np.sqrt(terms.sum(axis=1)),
     }
     for (lo, hi), name in zip(bands, summary_names(bands)[3:], strict=True):
-        inside = (f >= lo) & (f <= hi)
-        if not inside.any():
+        inside = np.flatnonzero((f >= lo) & (f <= hi))
+        if not inside.size:
             raise ValueError(f"band {(lo, hi)} Hz holds no grid frequency")
-        out[f"summary/{name}"] = np.sqrt(trapezoid(psd[:, inside], f[inside], axis=1))
+        if inside[-1] - inside[0] == inside.size - 1:  # a run of the grid: its own terms
+            band = terms[:, inside[0] : inside[-1]].sum(axis=1)
+        else:
+            band = trapezoid(psd[:, inside], f[inside], axis=1)
+        out[f"summary/{name}"] = np.sqrt(band)
     return out
 
 
@@ -262,8 +340,7 @@ def criteria_summary(
     dict of numpy.ndarray
         :data:`CRITERIA_SUMMARY` variables, case first.
     """
-    base = case_from_dict(spec.base_case_dict(), warn=False)
-    settings = criteria_settings(base, build_system(base), f)
+    settings = _context(spec).criteria
     forces = xr.Dataset(
         {
             "psd_force": (("case", "frequency", "wheel"), psd_force),
@@ -329,8 +406,19 @@ def _chunk_cases(
     spec: SweepSpec, layout: SweepLayout, chunk_id: int
 ) -> tuple[list[dict[str, Any]], list[list[int]]]:
     """The case dicts of a chunk, and the groups of cases that share all but pad and speed."""
+    cases, groups = _chunk_groups(spec, layout, chunk_id, spec.base_case_dict())
+    return cases, list(groups.values())
+
+
+def _chunk_groups(
+    spec: SweepSpec, layout: SweepLayout, chunk_id: int, base: dict[str, Any]
+) -> tuple[list[dict[str, Any]], dict[str, list[int]]]:
+    """:func:`_chunk_cases` with the groups keyed by what their cases override.
+
+    The keys are what the cases override beyond pad and speed (JSON); the case dicts
+    share the tables off their overridden paths with the base case dict `base`.
+    """
     cheap = [is_cheap_field(field) or is_pad_field(field) for field in spec.fields]
-    base = spec.base_case_dict()
     cases: list[dict[str, Any]] = []
     groups: dict[str, list[int]] = {}
     for i, index in enumerate(layout.chunk_indices(chunk_id)):
@@ -342,7 +430,7 @@ def _chunk_cases(
                 struct_override[field] = value
         cases.append(full)
         groups.setdefault(_key(struct_override), []).append(i)
-    return cases, list(groups.values())
+    return cases, groups
 
 
 def _with_field(d: Mapping[str, Any], parts: list[str], value: Any) -> dict[str, Any]:
@@ -363,7 +451,7 @@ def _with_field(d: Mapping[str, Any], parts: list[str], value: Any) -> dict[str,
 
 
 def _solve_groups(
-    f: NDArray[np.float64], cases: list[dict[str, Any]], groups: list[list[int]], compiled: bool
+    context: _Context, cases: list[dict[str, Any]], groups: dict[str, list[int]], compiled: bool
 ) -> tuple[FRF, NDArray[np.float64], NDArray[np.float64]]:
     """Responses of every case, ``(n_case, n_freq, ...)``, its irregularity PSD and wheel loads.
 
@@ -371,32 +459,31 @@ def _solve_groups(
     loads in N, ``(n_case, n_wheel)``.
 
     A group's cases share everything but the pad, its temperature, the speed and the
-    irregularity: its first case is validated and built, the others' pads are built from
-    their (validated) pad tables. Every case of the chunk, whatever its group, is then
-    one stack (:func:`railvib.sweep.stacked.frf_case_stack`): cases with the same track
-    table and wheel positions share one track solution, cases with the same vehicle
-    table one condensation.
+    irregularity: its first case is validated and built once per process (the group is
+    kept in `context` for the next chunks), the others' pads are built from their
+    (validated) pad tables. Every case of the chunk, whatever its group, is then one
+    stack (:func:`railvib.sweep.stacked.frf_case_stack`): cases with the same track table
+    and wheel positions share one track solution, cases with the same vehicle table one
+    condensation; cases with the same irregularity and speed one irregularity PSD.
     """
+    f = context.f
     n_case = len(cases)
     s_r = np.empty((n_case, f.size))
     systems: list[CoupledSystem | None] = [None] * n_case
     loads: list[NDArray[np.float64] | None] = [None] * n_case
-    track_keys: list[str] = [""] * n_case
+    track_keys: list[tuple[str, str]] = [("", "")] * n_case
     pads: dict[str, PadModel] = {}
     spectra: dict[str, Any] = {}
-    for members in groups:
-        case = case_from_dict(cases[members[0]], warn=False)
-        system = build_system(case)
-        static = np.asarray(system.vehicle.static_wheel_loads(), dtype=float)
-        # rail_pair doubles the pad: the same table under another reading is another pad
-        factor = system.track.pad.factor if isinstance(system.track.pad, ScaledPad) else 1.0
-        positions = system.wheel_positions.tolist()  # any vehicle or train: as built
+    temporal: dict[tuple[str, float], NDArray[np.float64]] = {}
+    for key, members in groups.items():
+        built = context.built(key, cases[members[0]])
+        system = built.system
         tracks: dict[str, PeriodicTrack] = {}
         for i in members:
             track = cases[i]["track"]
             tkey = _key(track)
             if tkey not in tracks:
-                pkey = _key([track["pad"], factor])
+                pkey = _key([track["pad"], built.pad_factor])
                 if pkey not in pads:
                     pads[pkey] = _pad_like(system.track.pad, track["pad"])
                 tracks[tkey] = replace(
@@ -404,12 +491,14 @@ def _solve_groups(
                 )
             speed = kmh_to_ms(cases[i]["speed_kmh"])
             systems[i] = replace(system, track=tracks[tkey], speed=speed)
-            loads[i] = static
-            track_keys[i] = _key([track, cases[i]["rail_model"], positions])
+            loads[i] = built.static_loads
+            track_keys[i] = (tkey, built.suffix)
             ikey = _key(cases[i]["irregularity"])
             if ikey not in spectra:
-                spectra[ikey] = build_spectrum(_with_irregularity(case, cases[i]))
-            s_r[i] = spectra[ikey].temporal(f, speed)
+                spectra[ikey] = build_spectrum(_with_irregularity(built.case, cases[i]))
+            if (ikey, speed) not in temporal:
+                temporal[ikey, speed] = spectra[ikey].temporal(f, speed)
+            s_r[i] = temporal[ikey, speed]
     frf = frf_case_stack(
         f,
         [s for s in systems if s is not None],

@@ -109,6 +109,9 @@ def frf_case_stack(
     cond = _stacked_condensations(conds)
     contact = np.array([s.contact_stiffness for s in systems])
     delays = np.stack([s.vehicle.wheel_offsets / s.speed for s in systems])  # (n_case, n_w)
+    # one excitation per distinct delays (speed and wheel offsets), picked per block
+    delays, delay_of = np.unique(delays, axis=0, return_inverse=True)
+    delay_of = delay_of.reshape(-1)
     excitation = np.exp(-2j * np.pi * f[None, :, None] * delays[:, None, :])
     step = max(1, FREQUENCY_BLOCK // f.size)  # cases per cache-sized block
     n_w = delays.shape[1]
@@ -119,8 +122,14 @@ def frf_case_stack(
         blk = slice(c, c + step)
         vehicle = cond if len(conds) == 1 else _pick(cond, vehicle_of[blk])
         n = per_track.shape[-1]
-        rec = [[per_track[track_of[blk], :, a, b] for b in range(n)] for a in range(n)]
-        parts = _coupled_entries(vehicle, rec, contact[blk, None], excitation[blk], np, True)
+        tracks = _rows(track_of[blk])  # a view where the block's tracks run consecutively
+        rec = [[per_track[tracks, :, a, b] for b in range(n)] for a in range(n)]
+        rows = delay_of[blk]
+        if (rows == rows[0]).all():  # the block's cases at one speed: one excitation
+            v = np.broadcast_to(excitation[rows[0]], (rows.size, *excitation.shape[1:]))
+        else:
+            v = excitation[rows]
+        parts = _coupled_entries(vehicle, rec, contact[blk, None], v, np, True)
         for whole, entries in zip((u_v, rail, force), parts, strict=True):
             for i, e in enumerate(entries):  # each entry written once, into its place
                 whole[blk, :, i] = e
@@ -189,6 +198,13 @@ def _distinct_keys(keys: Sequence[Hashable]) -> tuple[NDArray[np.int64], list[in
     return which, first
 
 
+def _rows(which: NDArray[np.int64]) -> slice | NDArray[np.int64]:
+    """Rows `which` as a slice where they run consecutively (a view, no copy), else as given."""
+    if np.array_equal(which, np.arange(which[0], which[0] + which.size)):
+        return slice(int(which[0]), int(which[0]) + which.size)
+    return which
+
+
 def _stacked_condensations(conds: Sequence[WheelCondensation]) -> WheelCondensation:
     """Condensations of several vehicles as one, entries ``(n_vehicle, n_freq)``.
 
@@ -230,14 +246,14 @@ def _coupled_entries(
     """
     s = vehicle.stiffness_entries
     n = len(rec)
+    # the identities added on the diagonals only (an off-diagonal "+ 0.0" is a copy)
     flex = [
-        [rec[a][b] + (1.0 / contact_stiffness if a == b else 0.0) for b in range(n)]
+        [rec[a][b] + 1.0 / contact_stiffness if a == b else rec[a][b] for b in range(n)]
         for a in range(n)
     ]
-    system = [
-        [dot(flex[a], [s[c][b] for c in range(n)]) + (1.0 if a == b else 0.0) for b in range(n)]
-        for a in range(n)
-    ]
+    system = [[dot(flex[a], [s[c][b] for c in range(n)]) for b in range(n)] for a in range(n)]
+    for a in range(n):
+        system[a][a] = system[a][a] + 1.0
     rhs = [excitation[:, :, a] for a in range(n)]
     u_w, bad = solve(system, rhs, xp)
     if bool(xp.any(bad)):  # pivots too small for elimination without exchanges: LAPACK

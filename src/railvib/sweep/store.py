@@ -17,6 +17,7 @@ every chunk; a different sweep is refused, never mixed in.
 
 from __future__ import annotations
 
+import asyncio
 import hashlib
 import json
 import os
@@ -107,6 +108,11 @@ def remove_leftovers(root: str | Path) -> list[Path]:
         for prefix in prefixes:
             removed += remove_temporaries(Path(root) / sub, prefix)
     return removed
+
+
+async def _gather(writes: list[Any]) -> None:
+    """Await the coroutines `writes` together (zarr writes of one chunk)."""
+    await asyncio.gather(*writes)
 
 
 def _remove(path: Path) -> None:
@@ -267,6 +273,8 @@ class ChunkStore:
         self.fingerprint = fingerprint(spec)
         self._stream = False  # write() streams into the Zarr store (begin_zarr)
         self._zarr: Any = None  # the Zarr group being filled, or None
+        self._arrays: dict[str, Any] = {}  # its variables (zarr.AsyncArray), by name
+        self._sync: Any = None  # zarr's runner of a coroutine on its I/O loop
         self._zarr_dir: Path | None = None
         self._dims: dict[str, tuple[str, ...]] = {}
         self._streamed: set[int] = set()
@@ -504,6 +512,7 @@ class ChunkStore:
         (no memory), written as compressed zero chunks that the chunks then overwrite.
         """
         import zarr
+        from zarr.core.sync import sync  # what zarr's own synchronous API runs on
 
         da: Any
         try:
@@ -526,6 +535,8 @@ class ChunkStore:
         self._zarr_dir = tmp
         self._zarr = zarr.open_group(str(tmp / "store"), mode="r+")
         self._dims = {str(name): tuple(map(str, v.dims)) for name, v in template.data_vars.items()}
+        self._arrays = {name: self._zarr[name].async_array for name in self._dims}
+        self._sync = sync
 
     def _encoding(self, ds: xr.Dataset) -> dict[str, dict[str, Any]]:
         block = dict(zip(self.layout.dims, self.layout.block, strict=True))
@@ -535,22 +546,28 @@ class ChunkStore:
         }
 
     def _write_region(self, chunk_id: int, arrays: dict[str, NDArray[Any]]) -> None:
-        """Write one chunk's arrays into their block of every Zarr variable."""
+        """Write one chunk's arrays into their block of every Zarr variable.
+
+        All the variables' blocks are written in one call on zarr's I/O loop (gathered
+        coroutines): written one by one, each small summary variable costs about a
+        millisecond of zarr's synchronisation, two thirds of a chunk's writing.
+        """
         if self._zarr is None:
             self._open_zarr(arrays)
         lay = self.layout
         sl = dict(zip(lay.dims, lay.chunk_slices(chunk_id), strict=True))
         shape = lay.chunk_shape(chunk_id)
         n = len(lay.dims)
+        writes = []
         for key, value in arrays.items():
             name = key.removeprefix("summary/")
             dims = self._dims[name]
             block = value.reshape(shape + value.shape[1:])  # sweep dims first
             own = dims[: len(dims) - n]  # the variable's own dims, then the sweep's
             order = [n + i for i in range(len(own))] + list(range(n))
-            self._zarr[name][tuple(sl.get(d, slice(None)) for d in dims)] = np.transpose(
-                block, order
-            )
+            where = tuple(sl.get(d, slice(None)) for d in dims)
+            writes.append(self._arrays[name].setitem(where, np.transpose(block, order)))
+        self._sync(_gather(writes))
         self._streamed.add(chunk_id)
 
     @contextmanager
@@ -578,6 +595,7 @@ class ChunkStore:
         if self._zarr_dir is not None:
             shutil.rmtree(self._zarr_dir, ignore_errors=True)
         self._zarr = self._zarr_dir = None
+        self._arrays = {}
         self._stream = False
         self._streamed = set()
 
