@@ -47,6 +47,7 @@ from numpy.typing import NDArray
 
 from railvib.errors import SolverWarning
 from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_transfer
+from railvib.track.compiled_cells import loaded_cell, use_compiled_cells, wave_chain
 
 __all__ = [
     "CLOSED_FORM_WAVENUMBER",
@@ -276,6 +277,12 @@ def cell_waves(cell: Cell) -> CellWaves:
     """
     k = cell.stiffness()
     bnd, inner = cell.boundary, cell.interior
+    if use_compiled_cells():
+        *parts, response, unconverged = wave_chain(k, bnd, inner, MAX_DOUBLINGS, CONVERGED)
+        if np.any(unconverged):
+            _warn_unconverged(int(unconverged.sum()))
+        a, b, c, e, p_r, p_l, r_step, l_step = parts
+        return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step, response)
     k_bb = k[:, bnd[:, None], bnd[None, :]]
     if inner.size:
         k_ib = k[:, inner[:, None], bnd[None, :]]
@@ -323,13 +330,18 @@ def _doubling(
         active, a, b, c, e = active[keep], a[keep], b[keep], c[keep], e[keep]
     else:
         p_r[active], p_l[active] = a, e
-        warnings.warn(
-            f"{active.size} frequencies: the cell's waves did not decay over 2^{MAX_DOUBLINGS} "
-            "cells; the semi-infinite track stiffness there is not converged",
-            SolverWarning,
-            stacklevel=3,
-        )
+        _warn_unconverged(active.size)
     return p_r / scale, p_l / scale
+
+
+def _warn_unconverged(n_freq: int) -> None:
+    """Warn that the doubling has not converged at `n_freq` frequencies."""
+    warnings.warn(
+        f"{n_freq} frequencies: the cell's waves did not decay over 2^{MAX_DOUBLINGS} "
+        "cells; the semi-infinite track stiffness there is not converged",
+        SolverWarning,
+        stacklevel=4,
+    )
 
 
 def cell_receptance(
@@ -353,18 +365,23 @@ def cell_receptance(
         Complex receptance in SI units (m/N for displacement DOFs).
     """
     cell = waves.cell
-    k = waves.stiffness.copy()
     bnd, inner = cell.boundary, cell.interior
     m = bnd.size // 2
     left, right = bnd[:m], bnd[m:]
-    k[:, left[:, None], left[None, :]] += waves.left_chain
-    k[:, right[:, None], right[None, :]] += waves.right_chain
     load_cell, load_dof = load
     obs_cell, obs_dof = obs
-    n_freq = k.shape[0]
-    rhs = np.zeros((n_freq, k.shape[1], load_dof.size), dtype=np.complex128)
-    rhs[:, load_dof, np.arange(load_dof.size)] = 1.0
-    u = _solve(k, rhs)  # (n_freq, n_dof, n_load): the loaded cell with both chains
+    n_freq = waves.stiffness.shape[0]
+    if use_compiled_cells():
+        u = loaded_cell(
+            waves.stiffness, left, right, waves.left_chain, waves.right_chain, load_dof
+        )
+    else:
+        k = waves.stiffness.copy()
+        k[:, left[:, None], left[None, :]] += waves.left_chain
+        k[:, right[:, None], right[None, :]] += waves.right_chain
+        rhs = np.zeros((n_freq, k.shape[1], load_dof.size), dtype=np.complex128)
+        rhs[:, load_dof, np.arange(load_dof.size)] = 1.0
+        u = _solve(k, rhs)  # (n_freq, n_dof, n_load): the loaded cell with both chains
     # each observation DOF's displacement per unit boundary displacements of its cell
     rows = np.zeros((n_freq, obs_dof.size, 2 * m), dtype=np.complex128)
     for i, dof in enumerate(obs_dof):
