@@ -47,7 +47,7 @@ from numpy.typing import NDArray
 
 from railvib.errors import SolverWarning
 from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_transfer
-from railvib.track.compiled_cells import loaded_cell, use_compiled_cells, wave_chain
+from railvib.track.compiled_cells import loaded_cell, propagated, use_compiled_cells, wave_chain
 
 __all__ = [
     "CLOSED_FORM_WAVENUMBER",
@@ -426,8 +426,10 @@ def cell_receptance(
     offsets = obs_cell[:, None] - load_cell[None, :]
     # boundary displacements of the cells n = 1, 2, ... to the right of the loaded one
     # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end)
-    right_q = _propagate(waves.right_step, u[:, right, :], int(max(offsets.max(initial=0), 0)))
-    left_q = _propagate(waves.left_step, u[:, left, :], int(max(-offsets.min(initial=0), 0)))
+    steps = int(max(offsets.max(initial=0), 0)), int(max(-offsets.min(initial=0), 0))
+    chain = propagated if use_compiled_cells() else _propagate
+    right_q = chain(waves.right_step, u[:, right, :], steps[0])
+    left_q = chain(waves.left_step, u[:, left, :], steps[1])
     out = np.empty((n_freq, obs_dof.size, load_dof.size), dtype=np.complex128)
     for i in range(obs_dof.size):
         for j in range(load_dof.size):

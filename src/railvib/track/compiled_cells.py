@@ -25,12 +25,19 @@ from numpy.typing import NDArray
 
 from railvib.track import compiled
 
-__all__ = ["cell_kernel", "loaded_cell", "use_compiled_cells", "wave_chain"]
+__all__ = ["cell_kernel", "loaded_cell", "propagated", "use_compiled_cells", "wave_chain"]
 
 _CELL_KERNEL: list[Any] = []
 
 #: the point functions compiled, helpers first (each calls only those before it)
-_FUNCTIONS = ("_lu_solve", "_eq_solve", "_waves_points", "_loaded_points")
+_FUNCTIONS = (
+    "_abs2",
+    "_lu_solve",
+    "_eq_solve",
+    "_waves_points",
+    "_loaded_points",
+    "_propagate_points",
+)
 
 
 def use_compiled_cells() -> bool:
@@ -53,7 +60,7 @@ def use_compiled_cells() -> bool:
 
 
 def cell_kernel() -> Any:
-    """The compiled functions ``(waves, loaded)`` (numba, cached), None without numba."""
+    """The compiled functions ``(waves, loaded, propagate)`` (numba, cached), or None."""
     if not _CELL_KERNEL:
         try:
             import numba
@@ -64,7 +71,7 @@ def cell_kernel() -> Any:
             space = globals()
             for name in _FUNCTIONS:  # compiled at first call: callees resolve to these
                 space[name] = jit(space[name])
-            _CELL_KERNEL.append((space["_waves_points"], space["_loaded_points"]))
+            _CELL_KERNEL.append(tuple(space[name] for name in _FUNCTIONS[3:]))
     return _CELL_KERNEL[0]
 
 
@@ -150,6 +157,36 @@ def loaded_cell(
         out,
     )
     return out
+
+
+def propagated(
+    step: NDArray[np.complex128], q: NDArray[np.complex128], n: int
+) -> NDArray[np.complex128]:
+    """``[q, step q, ..., step^n q]`` stacked, ``(n + 1, n_freq, m, n_load)``.
+
+    Parameters
+    ----------
+    step : numpy.ndarray
+        The wave step ``R`` or ``L``, ``(n_freq, m, m)``.
+    q : numpy.ndarray
+        Boundary displacements per load, ``(n_freq, m, n_load)``.
+    n : int
+        Steps (>= 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex, in the units of `q`.
+    """
+    out = np.empty((n + 1,) + q.shape, dtype=np.complex128)
+    out[0] = q
+    cell_kernel()[2](np.ascontiguousarray(step), int(n), out)
+    return out
+
+
+def _abs2(z: complex) -> float:
+    """``|z|^2``."""
+    return z.real * z.real + z.imag * z.imag
 
 
 def _lu_solve(a: Any, b: Any) -> None:
@@ -290,15 +327,15 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
                     kbb[i, j] = ve
                     kbb[i, m + j] = vb
                     kbb[m + i, j] = vc
-            for i in range(m):
+            for i in range(m):  # the largest squared magnitudes (no square roots)
                 for j in range(m):
                     a[i, j] = sm[i, j]
                     e[i, j] = kbb[i, j]
                     b[i, j] = kbb[i, m + j]
                     c[i, j] = kbb[m + i, j]
-                    size = max(size, abs(a[i, j]), abs(e[i, j]))
-                    coupling = max(coupling, abs(b[i, j]), abs(c[i, j]))
-            if coupling <= converged * size:
+                    size = max(size, _abs2(a[i, j]), _abs2(e[i, j]))
+                    coupling = max(coupling, _abs2(b[i, j]), _abs2(c[i, j]))
+            if coupling <= converged**2 * size:
                 done = True
                 break
         unconverged[f] = not done
@@ -346,3 +383,17 @@ def _loaded_points(k: Any, left: Any, right: Any, p_l: Any, p_r: Any, load: Any,
         for i in range(n):
             for q in range(load.size):
                 out[f, i, q] = rhs[i, q]
+
+
+def _propagate_points(step: Any, n: int, out: Any) -> None:
+    """``out[k + 1] = step out[k]`` for ``k < n`` at each frequency (:func:`propagated`)."""
+    m = step.shape[1]
+    n_load = out.shape[3]
+    for f in range(step.shape[0]):
+        for k in range(n):
+            for i in range(m):
+                for q in range(n_load):
+                    v = 0.0j
+                    for j in range(m):
+                        v += step[f, i, j] * out[k, f, j, q]
+                    out[k + 1, f, i, q] = v
