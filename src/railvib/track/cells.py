@@ -47,7 +47,13 @@ from numpy.typing import NDArray
 
 from railvib.errors import SolverWarning
 from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_transfer
-from railvib.track.compiled_cells import loaded_cell, propagated, use_compiled_cells, wave_chain
+from railvib.track.compiled_cells import (
+    assembled,
+    loaded_cell,
+    propagated,
+    use_compiled_cells,
+    wave_chain,
+)
 
 __all__ = [
     "CLOSED_FORM_WAVENUMBER",
@@ -223,6 +229,17 @@ class Cell:
         """The assembled cell dynamic stiffness, ``(n_freq, 2 n_nodes, 2 n_nodes)``, SI."""
         n_freq = self.spans[0][2].shape[0]
         n = 2 * self.n_nodes
+        if use_compiled_cells():
+            ground = [
+                (2 * a + dof, -1 if b is None else 2 * b + dof) for a, b, dof, _ in self.springs
+            ]
+            return assembled(
+                n,
+                np.array([(a, b) for a, b, _ in self.spans], dtype=np.int64).reshape(-1, 2),
+                np.stack([block for _, _, block in self.spans]),
+                np.array(ground, dtype=np.int64).reshape(-1, 2),
+                np.array([v for *_, v in self.springs], dtype=np.complex128).reshape(-1, n_freq),
+            )
         k = np.zeros((n_freq, n, n), dtype=np.complex128)
         for a, b, block in self.spans:
             if b == a + 1:  # consecutive nodes: a contiguous 4 x 4 block (a view, no copy)
@@ -405,9 +422,7 @@ def cell_receptance(
     obs_cell, obs_dof = obs
     n_freq = waves.stiffness.shape[0]
     if use_compiled_cells():
-        u = loaded_cell(
-            waves.stiffness, left, right, waves.left_chain, waves.right_chain, load_dof
-        )
+        u = loaded_cell(waves.stiffness, left, right, waves.left_chain, waves.right_chain, load_dof)
     else:
         k = waves.stiffness.copy()
         k[:, left[:, None], left[None, :]] += waves.left_chain

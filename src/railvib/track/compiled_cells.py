@@ -25,7 +25,14 @@ from numpy.typing import NDArray
 
 from railvib.track import compiled
 
-__all__ = ["cell_kernel", "loaded_cell", "propagated", "use_compiled_cells", "wave_chain"]
+__all__ = [
+    "assembled",
+    "cell_kernel",
+    "loaded_cell",
+    "propagated",
+    "use_compiled_cells",
+    "wave_chain",
+]
 
 _CELL_KERNEL: list[Any] = []
 
@@ -37,6 +44,7 @@ _FUNCTIONS = (
     "_waves_points",
     "_loaded_points",
     "_propagate_points",
+    "_assemble_points",
 )
 
 
@@ -71,7 +79,7 @@ def cell_kernel() -> Any:
             space = globals()
             for name in _FUNCTIONS:  # compiled at first call: callees resolve to these
                 space[name] = jit(space[name])
-            _CELL_KERNEL.append(tuple(space[name] for name in _FUNCTIONS[3:]))
+            _CELL_KERNEL.append(tuple(space[name] for name in _FUNCTIONS[3:]))  # the entry points
     return _CELL_KERNEL[0]
 
 
@@ -159,6 +167,38 @@ def loaded_cell(
     return out
 
 
+def assembled(
+    n_dof: int,
+    span_nodes: NDArray[np.int64],
+    span_blocks: NDArray[np.complex128],
+    spring_dofs: NDArray[np.int64],
+    spring_values: NDArray[np.complex128],
+) -> NDArray[np.complex128]:
+    """The cell stiffness assembled (as :meth:`railvib.track.cells.Cell.stiffness`).
+
+    Parameters
+    ----------
+    n_dof : int
+        DOFs of the cell.
+    span_nodes : numpy.ndarray
+        ``(n_span, 2)``: the two nodes of each span.
+    span_blocks : numpy.ndarray
+        ``(n_span, n_freq, 4, 4)``: their dynamic stiffness, SI units.
+    spring_dofs : numpy.ndarray
+        ``(n_spring, 2)``: the two DOFs of each spring (-1 for the ground).
+    spring_values : numpy.ndarray
+        ``(n_spring, n_freq)``: their complex stiffness, SI units.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n_freq, n_dof, n_dof)``, complex, SI units.
+    """
+    out = np.zeros((span_blocks.shape[1], n_dof, n_dof), dtype=np.complex128)
+    cell_kernel()[3](span_nodes, span_blocks, spring_dofs, spring_values, out)
+    return out
+
+
 def propagated(
     step: NDArray[np.complex128], q: NDArray[np.complex128], n: int
 ) -> NDArray[np.complex128]:
@@ -189,10 +229,21 @@ def _abs2(z: complex) -> float:
     return z.real * z.real + z.imag * z.imag
 
 
-def _lu_solve(a: Any, b: Any) -> None:
-    """``b <- a^-1 b`` in place (`a` overwritten): elimination with partial pivoting."""
+def _lu_solve(a: Any, b: Any, hi: Any) -> None:
+    """``b <- a^-1 b`` in place (`a` overwritten): elimination with partial pivoting.
+
+    Each row's last nonzero column is tracked in the scratch `hi` (a cell's matrix is
+    nearly banded), so that the products with exact zeros, which change nothing, are
+    skipped.
+    """
     n = a.shape[0]
     r = b.shape[1]
+    for i in range(n):
+        hi[i] = i
+        for q in range(n - 1, i, -1):
+            if a[i, q] != 0.0:
+                hi[i] = q
+                break
     for j in range(n):
         p = j
         best = abs(a[j, j].real) + abs(a[j, j].imag)
@@ -210,27 +261,36 @@ def _lu_solve(a: Any, b: Any) -> None:
                 t = b[j, q]
                 b[j, q] = b[p, q]
                 b[p, q] = t
+            t_hi = hi[j]
+            hi[j] = hi[p]
+            hi[p] = t_hi
+        end = max(hi[j], j) + 1
         inv = 1.0 / a[j, j]
         for i in range(j + 1, n):
             g = a[i, j] * inv
             if g != 0.0:
-                for q in range(j + 1, n):
+                for q in range(j + 1, end):
                     a[i, q] -= g * a[j, q]
                 for q in range(r):
                     b[i, q] -= g * b[j, q]
+                if end - 1 > hi[i]:
+                    hi[i] = end - 1
     for j in range(n - 1, -1, -1):
         inv = 1.0 / a[j, j]
+        end = max(hi[j], j) + 1
         for q in range(r):
             v = b[j, q]
-            for i in range(j + 1, n):
+            for i in range(j + 1, end):
                 v -= a[j, i] * b[i, q]
             b[j, q] = v * inv
 
 
-def _eq_solve(a: Any, b: Any) -> None:
-    """``b <- a^-1 b`` in place, rows and columns scaled by ``|diag a|^(-1/2)`` (`a` overwritten)."""
+def _eq_solve(a: Any, b: Any, s: Any, hi: Any) -> None:
+    """``b <- a^-1 b`` in place, rows and columns scaled by ``|diag a|^(-1/2)`` (`a` overwritten).
+
+    `s` and `hi` are scratch (at least as long as `a`).
+    """
     n = a.shape[0]
-    s = np.empty(n)
     for i in range(n):
         s[i] = 1.0 / np.sqrt(abs(a[i, i]))
     for i in range(n):
@@ -238,7 +298,7 @@ def _eq_solve(a: Any, b: Any) -> None:
             a[i, j] *= s[i] * s[j]
         for q in range(b.shape[1]):
             b[i, q] *= s[i]
-    _lu_solve(a, b)
+    _lu_solve(a, b, hi)
     for i in range(n):
         for q in range(b.shape[1]):
             b[i, q] *= s[i]
@@ -269,6 +329,9 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
     sm = np.empty((m, m), dtype=np.complex128)
     y = np.empty((m, 2 * m), dtype=np.complex128)
     s = np.empty(m)
+    scratch = np.empty(max(ni, m))
+    hi = np.empty(max(ni, m), dtype=np.int64)
+    z = np.empty((m, m), dtype=np.complex128)
     for f in range(n_freq):
         for i in range(ni):
             for j in range(ni):
@@ -276,7 +339,7 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
             for j in range(nb):
                 x[i, j] = k[f, inner[i], bnd[j]]
         if ni:
-            _eq_solve(kii, x)
+            _eq_solve(kii, x, scratch, hi)
         for i in range(ni):
             for j in range(nb):
                 response[f, i, j] = -x[i, j]
@@ -309,7 +372,7 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
                     sm[i, j] = e[i, j] + a[i, j]
                     y[i, j] = c[i, j]
                     y[i, m + j] = b[i, j]
-            _lu_solve(sm, y)
+            _lu_solve(sm, y, hi)
             size = 0.0
             coupling = 0.0
             for i in range(m):  # new blocks into sm (A), kbb's first rows as scratch
@@ -354,8 +417,10 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
                     else:
                         sm[i, j] = blocks[5, f, i, j] + blocks[0, f, i, j]
                         y[i, j] = blocks[1, f, i, j]
-            z = y[:, :m]
-            _eq_solve(sm, z)
+            for i in range(m):
+                for j in range(m):
+                    z[i, j] = y[i, j]
+            _eq_solve(sm, z, scratch, hi)
             for i in range(m):
                 for j in range(m):
                     blocks[6 + side, f, i, j] = -z[i, j]
@@ -368,6 +433,8 @@ def _loaded_points(k: Any, left: Any, right: Any, p_l: Any, p_r: Any, load: Any,
     m = left.size
     a = np.empty((n, n), dtype=np.complex128)
     rhs = np.empty((n, load.size), dtype=np.complex128)
+    scratch = np.empty(n)
+    hi = np.empty(n, dtype=np.int64)
     for f in range(n_freq):
         for i in range(n):
             for j in range(n):
@@ -379,7 +446,7 @@ def _loaded_points(k: Any, left: Any, right: Any, p_l: Any, p_r: Any, load: Any,
         rhs[:] = 0.0
         for q in range(load.size):
             rhs[load[q], q] = 1.0
-        _eq_solve(a, rhs)
+        _eq_solve(a, rhs, scratch, hi)
         for i in range(n):
             for q in range(load.size):
                 out[f, i, q] = rhs[i, q]
@@ -397,3 +464,24 @@ def _propagate_points(step: Any, n: int, out: Any) -> None:
                     for j in range(m):
                         v += step[f, i, j] * out[k, f, j, q]
                     out[k + 1, f, i, q] = v
+
+
+def _assemble_points(
+    span_nodes: Any, span_blocks: Any, spring_dofs: Any, spring_values: Any, out: Any
+) -> None:
+    """Add the spans and springs into `out` at each frequency (:func:`assembled`)."""
+    for f in range(out.shape[0]):
+        for s in range(span_nodes.shape[0]):
+            for i in range(4):
+                di = 2 * span_nodes[s, i // 2] + i % 2
+                for j in range(4):
+                    out[f, di, 2 * span_nodes[s, j // 2] + j % 2] += span_blocks[s, f, i, j]
+        for s in range(spring_dofs.shape[0]):
+            i = spring_dofs[s, 0]
+            j = spring_dofs[s, 1]
+            v = spring_values[s, f]
+            out[f, i, i] += v
+            if j >= 0:
+                out[f, j, j] += v
+                out[f, i, j] -= v
+                out[f, j, i] -= v
