@@ -143,46 +143,17 @@ def _stiffness_from_transfer(t: NDArray[np.complex128]) -> NDArray[np.complex128
     with ``p_b = s21 u_a + s22 p_a``, ``u_b = s11 u_a + s12 p_a`` the forces on the span
     are ``f_a = p_a`` and ``f_b = -p_b``.
     """
-    # s = c t c^-1 with the signed permutation c (rows u, p of the state): entry by entry
-    perm, sign = (0, 1, 3, 2), (1.0, 1.0, 1.0, -1.0)
-
-    def entry(i: int, j: int) -> NDArray[np.complex128]:
-        value = t[:, perm[i], perm[j]]
-        return value if sign[i] * sign[j] > 0 else -value
-
-    s11, s12, s21, s22 = (
-        [[entry(2 * bi + i, 2 * bj + j) for j in range(2)] for i in range(2)]
-        for bi, bj in ((0, 0), (0, 1), (1, 0), (1, 1))
-    )
-    det = s12[0][0] * s12[1][1] - s12[0][1] * s12[1][0]
-    k_ab = [[s12[1][1] / det, -s12[0][1] / det], [-s12[1][0] / det, s12[0][0] / det]]
-    k_aa = _neg(_mul(k_ab, s11))
-    k_bb = _neg(_mul(s22, k_ab))
-    k_ba = _neg(_add(s21, _mul(k_bb, s11)))
-    out = np.empty(t.shape, dtype=np.complex128)
-    for (r, c), block in (((0, 0), k_aa), ((0, 2), k_ab), ((2, 0), k_ba), ((2, 2), k_bb)):
-        for i in range(2):
-            for j in range(2):
-                out[:, r + i, c + j] = block[i][j]
-    return out
-
-
-_Block = list[list[NDArray[np.complex128]]]
-
-
-def _mul(x: _Block, y: _Block) -> _Block:
-    """2 x 2 product of blocks held entry by entry (each entry an array over frequency)."""
-    return [[x[i][0] * y[0][j] + x[i][1] * y[1][j] for j in range(2)] for i in range(2)]
-
-
-def _add(x: _Block, y: _Block) -> _Block:
-    """2 x 2 sum of blocks held entry by entry."""
-    return [[x[i][j] + y[i][j] for j in range(2)] for i in range(2)]
-
-
-def _neg(x: _Block) -> _Block:
-    """Negated 2 x 2 block held entry by entry."""
-    return [[-x[i][j] for j in range(2)] for i in range(2)]
+    # s = c t c^-1 with the signed permutation c: rows and columns permuted, row and
+    # column 3 negated (exactly what the product with c gives, without the products)
+    perm = np.array([0, 1, 3, 2])
+    sign = np.array([1.0, 1.0, 1.0, -1.0])
+    s = t[:, perm[:, None], perm[None, :]] * (sign[:, None] * sign[None, :])
+    k_ab = np.linalg.inv(s[:, :2, 2:])
+    k_aa = -k_ab @ s[:, :2, :2]
+    k_bb = -s[:, 2:, 2:] @ k_ab
+    k_ba = -s[:, 2:, :2] - k_bb @ s[:, :2, :2]
+    top = np.concatenate([k_aa, k_ab], axis=2)
+    return np.concatenate([top, np.concatenate([k_ba, k_bb], axis=2)], axis=1)
 
 
 @dataclass(frozen=True, eq=False)

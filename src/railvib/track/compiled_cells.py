@@ -78,7 +78,7 @@ def cell_kernel() -> Any:
             jit = numba.njit(cache=True, nogil=True)
             space = globals()
             for name in _FUNCTIONS:  # compiled at first call: callees resolve to these
-                space[name] = jit(space[name])
+                space[name] = jit(_PLAIN[name])
             _CELL_KERNEL.append(tuple(space[name] for name in _FUNCTIONS[3:]))  # the entry points
     return _CELL_KERNEL[0]
 
@@ -485,3 +485,7 @@ def _assemble_points(
                 out[f, j, j] += v
                 out[f, i, j] -= v
                 out[f, j, i] -= v
+
+
+#: the plain Python functions (the kernel before compilation: the same numbers, slowly)
+_PLAIN = {name: globals()[name] for name in _FUNCTIONS}
