@@ -97,11 +97,11 @@ def wave_chain(
     k : numpy.ndarray
         Assembled cell stiffness, ``(n_freq, n_dof, n_dof)``, SI units.
     bnd, inner : numpy.ndarray
-        Boundary DOFs (left then right, ``2 m``) and interior DOFs.
+        Boundary DOFs (left then right, ``2 m``) and interior DOFs (indices, dimensionless).
     max_doublings : int
-        Doublings at most.
+        Doublings at most (dimensionless count).
     converged : float
-        ``max|B_k| / max|A_k|`` below which a frequency has converged.
+        ``max|B_k| / max|A_k|`` below which a frequency has converged (dimensionless).
 
     Returns
     -------
@@ -179,13 +179,13 @@ def assembled(
     Parameters
     ----------
     n_dof : int
-        DOFs of the cell.
+        DOFs of the cell (dimensionless count).
     span_nodes : numpy.ndarray
-        ``(n_span, 2)``: the two nodes of each span.
+        ``(n_span, 2)``: the two nodes of each span (indices, dimensionless).
     span_blocks : numpy.ndarray
         ``(n_span, n_freq, 4, 4)``: their dynamic stiffness, SI units.
     spring_dofs : numpy.ndarray
-        ``(n_spring, 2)``: the two DOFs of each spring (-1 for the ground).
+        ``(n_spring, 2)``: the two DOFs of each spring (indices, dimensionless; -1: ground).
     spring_values : numpy.ndarray
         ``(n_spring, n_freq)``: their complex stiffness, SI units.
 
