@@ -47,6 +47,13 @@ from numpy.typing import NDArray
 
 from railvib.errors import SolverWarning
 from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_transfer
+from railvib.track.compiled_cells import (
+    assembled,
+    loaded_cell,
+    propagated,
+    use_compiled_cells,
+    wave_chain,
+)
 
 __all__ = [
     "CLOSED_FORM_WAVENUMBER",
@@ -136,10 +143,11 @@ def _stiffness_from_transfer(t: NDArray[np.complex128]) -> NDArray[np.complex128
     with ``p_b = s21 u_a + s22 p_a``, ``u_b = s11 u_a + s12 p_a`` the forces on the span
     are ``f_a = p_a`` and ``f_b = -p_b``.
     """
-    c = np.zeros((4, 4))
-    c[0, 0] = c[1, 1] = c[2, 3] = 1.0
-    c[3, 2] = -1.0
-    s = c @ t @ np.linalg.inv(c)
+    # s = c t c^-1 with the signed permutation c: rows and columns permuted, row and
+    # column 3 negated (exactly what the product with c gives, without the products)
+    perm = np.array([0, 1, 3, 2])
+    sign = np.array([1.0, 1.0, 1.0, -1.0])
+    s = t[:, perm[:, None], perm[None, :]] * (sign[:, None] * sign[None, :])
     k_ab = np.linalg.inv(s[:, :2, 2:])
     k_aa = -k_ab @ s[:, :2, :2]
     k_bb = -s[:, 2:, 2:] @ k_ab
@@ -192,8 +200,22 @@ class Cell:
         """The assembled cell dynamic stiffness, ``(n_freq, 2 n_nodes, 2 n_nodes)``, SI."""
         n_freq = self.spans[0][2].shape[0]
         n = 2 * self.n_nodes
+        if use_compiled_cells():
+            ground = [
+                (2 * a + dof, -1 if b is None else 2 * b + dof) for a, b, dof, _ in self.springs
+            ]
+            return assembled(
+                n,
+                np.array([(a, b) for a, b, _ in self.spans], dtype=np.int64).reshape(-1, 2),
+                np.stack([block for _, _, block in self.spans]),
+                np.array(ground, dtype=np.int64).reshape(-1, 2),
+                np.array([v for *_, v in self.springs], dtype=np.complex128).reshape(-1, n_freq),
+            )
         k = np.zeros((n_freq, n, n), dtype=np.complex128)
         for a, b, block in self.spans:
+            if b == a + 1:  # consecutive nodes: a contiguous 4 x 4 block (a view, no copy)
+                k[:, 2 * a : 2 * a + 4, 2 * a : 2 * a + 4] += block
+                continue
             dofs = np.array([2 * a, 2 * a + 1, 2 * b, 2 * b + 1])
             k[:, dofs[:, None], dofs[None, :]] += block
         for a, other, dof, value in self.springs:
@@ -276,6 +298,12 @@ def cell_waves(cell: Cell) -> CellWaves:
     """
     k = cell.stiffness()
     bnd, inner = cell.boundary, cell.interior
+    if use_compiled_cells():
+        *parts, response, unconverged = wave_chain(k, bnd, inner, MAX_DOUBLINGS, CONVERGED)
+        if np.any(unconverged):
+            _warn_unconverged(int(unconverged.sum()))
+        a, b, c, e, p_r, p_l, r_step, l_step = parts
+        return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step, response)
     k_bb = k[:, bnd[:, None], bnd[None, :]]
     if inner.size:
         k_ib = k[:, inner[:, None], bnd[None, :]]
@@ -323,13 +351,18 @@ def _doubling(
         active, a, b, c, e = active[keep], a[keep], b[keep], c[keep], e[keep]
     else:
         p_r[active], p_l[active] = a, e
-        warnings.warn(
-            f"{active.size} frequencies: the cell's waves did not decay over 2^{MAX_DOUBLINGS} "
-            "cells; the semi-infinite track stiffness there is not converged",
-            SolverWarning,
-            stacklevel=3,
-        )
+        _warn_unconverged(active.size)
     return p_r / scale, p_l / scale
+
+
+def _warn_unconverged(n_freq: int) -> None:
+    """Warn that the doubling has not converged at `n_freq` frequencies."""
+    warnings.warn(
+        f"{n_freq} frequencies: the cell's waves did not decay over 2^{MAX_DOUBLINGS} "
+        "cells; the semi-infinite track stiffness there is not converged",
+        SolverWarning,
+        stacklevel=4,
+    )
 
 
 def cell_receptance(
@@ -353,18 +386,21 @@ def cell_receptance(
         Complex receptance in SI units (m/N for displacement DOFs).
     """
     cell = waves.cell
-    k = waves.stiffness.copy()
     bnd, inner = cell.boundary, cell.interior
     m = bnd.size // 2
     left, right = bnd[:m], bnd[m:]
-    k[:, left[:, None], left[None, :]] += waves.left_chain
-    k[:, right[:, None], right[None, :]] += waves.right_chain
     load_cell, load_dof = load
     obs_cell, obs_dof = obs
-    n_freq = k.shape[0]
-    rhs = np.zeros((n_freq, k.shape[1], load_dof.size), dtype=np.complex128)
-    rhs[:, load_dof, np.arange(load_dof.size)] = 1.0
-    u = _solve(k, rhs)  # (n_freq, n_dof, n_load): the loaded cell with both chains
+    n_freq = waves.stiffness.shape[0]
+    if use_compiled_cells():
+        u = loaded_cell(waves.stiffness, left, right, waves.left_chain, waves.right_chain, load_dof)
+    else:
+        k = waves.stiffness.copy()
+        k[:, left[:, None], left[None, :]] += waves.left_chain
+        k[:, right[:, None], right[None, :]] += waves.right_chain
+        rhs = np.zeros((n_freq, k.shape[1], load_dof.size), dtype=np.complex128)
+        rhs[:, load_dof, np.arange(load_dof.size)] = 1.0
+        u = _solve(k, rhs)  # (n_freq, n_dof, n_load): the loaded cell with both chains
     # each observation DOF's displacement per unit boundary displacements of its cell
     rows = np.zeros((n_freq, obs_dof.size, 2 * m), dtype=np.complex128)
     for i, dof in enumerate(obs_dof):
@@ -376,8 +412,10 @@ def cell_receptance(
     offsets = obs_cell[:, None] - load_cell[None, :]
     # boundary displacements of the cells n = 1, 2, ... to the right of the loaded one
     # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end)
-    right_q = _propagate(waves.right_step, u[:, right, :], int(max(offsets.max(initial=0), 0)))
-    left_q = _propagate(waves.left_step, u[:, left, :], int(max(-offsets.min(initial=0), 0)))
+    steps = int(max(offsets.max(initial=0), 0)), int(max(-offsets.min(initial=0), 0))
+    chain = propagated if use_compiled_cells() else _propagate
+    right_q = chain(waves.right_step, u[:, right, :], steps[0])
+    left_q = chain(waves.left_step, u[:, left, :], steps[1])
     out = np.empty((n_freq, obs_dof.size, load_dof.size), dtype=np.complex128)
     for i in range(obs_dof.size):
         for j in range(load_dof.size):

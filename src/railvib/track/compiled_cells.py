@@ -1,0 +1,491 @@
+"""The cell solver's dense steps compiled (numba), one pass over the frequencies of a block.
+
+The same algorithm as :mod:`railvib.track.cells` (the reference, and the fallback),
+written frequency by frequency: the condensation of a cell's interior DOFs, the doubling
+of its boundary blocks, the wave steps ``R`` and ``L``, and the loaded cell's solve with
+both semi-infinite chains attached. Each dense solve is the reference's equilibrated
+one (rows and columns scaled by ``|diag|^(-1/2)``) by Gaussian elimination with partial
+pivoting on ``|Re| + |Im|`` (LAPACK's choice), so results agree with the reference to
+rounding. NumPy's stacked solve costs about a microsecond per small matrix whatever its
+size; here a 4 x 4 solve is a few dozen nanoseconds, and no intermediate array of the
+block is formed.
+
+The kernel is used only in a process that has loaded the compiled kernels already (a
+large sweep, or :func:`railvib.track.compiled.compile_kernel`): a single case's run
+never imports numba itself. ``RAILVIB_COMPILED=0`` keeps everything on NumPy.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from railvib.track import compiled
+
+__all__ = [
+    "assembled",
+    "cell_kernel",
+    "loaded_cell",
+    "propagated",
+    "use_compiled_cells",
+    "wave_chain",
+]
+
+_CELL_KERNEL: list[Any] = []
+
+#: the point functions compiled, helpers first (each calls only those before it)
+_FUNCTIONS = (
+    "_abs2",
+    "_lu_solve",
+    "_eq_solve",
+    "_waves_points",
+    "_loaded_points",
+    "_propagate_points",
+    "_assemble_points",
+)
+
+
+def use_compiled_cells() -> bool:
+    """Tell whether the cell solver runs on the compiled kernel in this process.
+
+    Returns
+    -------
+    bool
+        True where ``RAILVIB_COMPILED`` is not ``0`` and the process has loaded the
+        compiled kernels (this one, or the rigid-base one of
+        :mod:`railvib.track.compiled`, in which case this one is loaded now).
+    """
+    if os.environ.get("RAILVIB_COMPILED", "1") == "0":
+        return False
+    if _CELL_KERNEL:
+        return _CELL_KERNEL[0] is not None
+    if not compiled._KERNEL or compiled._KERNEL[0] is None:
+        return False
+    return cell_kernel() is not None
+
+
+def cell_kernel() -> Any:
+    """The compiled functions ``(waves, loaded, propagate)`` (numba, cached), or None."""
+    if not _CELL_KERNEL:
+        try:
+            import numba
+        except ImportError:
+            _CELL_KERNEL.append(None)
+        else:
+            jit = numba.njit(cache=True, nogil=True)
+            space = globals()
+            for name in _FUNCTIONS:  # compiled at first call: callees resolve to these
+                space[name] = jit(_PLAIN[name])
+            _CELL_KERNEL.append(tuple(space[name] for name in _FUNCTIONS[3:]))  # the entry points
+    return _CELL_KERNEL[0]
+
+
+def wave_chain(
+    k: NDArray[np.complex128],
+    bnd: NDArray[np.intp],
+    inner: NDArray[np.intp],
+    max_doublings: int,
+    converged: float,
+) -> tuple[NDArray[np.complex128], ...]:
+    """The condensed cell, its chains and wave steps (as :func:`railvib.track.cells.cell_waves`).
+
+    Parameters
+    ----------
+    k : numpy.ndarray
+        Assembled cell stiffness, ``(n_freq, n_dof, n_dof)``, SI units.
+    bnd, inner : numpy.ndarray
+        Boundary DOFs (left then right, ``2 m``) and interior DOFs (indices, dimensionless).
+    max_doublings : int
+        Doublings at most (dimensionless count).
+    converged : float
+        ``max|B_k| / max|A_k|`` below which a frequency has converged (dimensionless).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(A, B, C, E, P_r, P_l, R, L, response, unconverged)``: blocks ``(n_freq, m, m)``,
+        the interior response ``(n_freq, n_interior, 2 m)`` and a bool ``(n_freq,)`` of
+        the frequencies the doubling did not converge at.
+    """
+    n_freq = k.shape[0]
+    m = bnd.size // 2
+    blocks = np.empty((8, n_freq, m, m), dtype=np.complex128)
+    response = np.empty((n_freq, inner.size, bnd.size), dtype=np.complex128)
+    unconverged = np.zeros(n_freq, dtype=np.bool_)
+    cell_kernel()[0](
+        np.ascontiguousarray(k),
+        bnd.astype(np.int64),
+        inner.astype(np.int64),
+        int(max_doublings),
+        float(converged),
+        blocks,
+        response,
+        unconverged,
+    )
+    return (*blocks, response, unconverged)
+
+
+def loaded_cell(
+    k: NDArray[np.complex128],
+    left: NDArray[np.intp],
+    right: NDArray[np.intp],
+    p_l: NDArray[np.complex128],
+    p_r: NDArray[np.complex128],
+    load_dof: NDArray[np.intp],
+) -> NDArray[np.complex128]:
+    """DOFs of the loaded cell with both chains attached per unit load, ``(n_freq, n_dof, n_load)``.
+
+    Parameters
+    ----------
+    k : numpy.ndarray
+        Assembled cell stiffness, ``(n_freq, n_dof, n_dof)``, SI units.
+    left, right : numpy.ndarray
+        The boundary DOFs of each side (``m`` each).
+    p_l, p_r : numpy.ndarray
+        The chains to the left and to the right, ``(n_freq, m, m)``.
+    load_dof : numpy.ndarray
+        The DOF of each unit load.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex displacements in m/N, ``(n_freq, n_dof, n_load)``.
+    """
+    out = np.empty((k.shape[0], k.shape[1], load_dof.size), dtype=np.complex128)
+    cell_kernel()[1](
+        np.ascontiguousarray(k),
+        left.astype(np.int64),
+        right.astype(np.int64),
+        np.ascontiguousarray(p_l),
+        np.ascontiguousarray(p_r),
+        load_dof.astype(np.int64),
+        out,
+    )
+    return out
+
+
+def assembled(
+    n_dof: int,
+    span_nodes: NDArray[np.int64],
+    span_blocks: NDArray[np.complex128],
+    spring_dofs: NDArray[np.int64],
+    spring_values: NDArray[np.complex128],
+) -> NDArray[np.complex128]:
+    """The cell stiffness assembled (as :meth:`railvib.track.cells.Cell.stiffness`).
+
+    Parameters
+    ----------
+    n_dof : int
+        DOFs of the cell (dimensionless count).
+    span_nodes : numpy.ndarray
+        ``(n_span, 2)``: the two nodes of each span (indices, dimensionless).
+    span_blocks : numpy.ndarray
+        ``(n_span, n_freq, 4, 4)``: their dynamic stiffness, SI units.
+    spring_dofs : numpy.ndarray
+        ``(n_spring, 2)``: the two DOFs of each spring (indices, dimensionless; -1: ground).
+    spring_values : numpy.ndarray
+        ``(n_spring, n_freq)``: their complex stiffness, SI units.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n_freq, n_dof, n_dof)``, complex, SI units.
+    """
+    out = np.zeros((span_blocks.shape[1], n_dof, n_dof), dtype=np.complex128)
+    cell_kernel()[3](span_nodes, span_blocks, spring_dofs, spring_values, out)
+    return out
+
+
+def propagated(
+    step: NDArray[np.complex128], q: NDArray[np.complex128], n: int
+) -> NDArray[np.complex128]:
+    """``[q, step q, ..., step^n q]`` stacked, ``(n + 1, n_freq, m, n_load)``.
+
+    Parameters
+    ----------
+    step : numpy.ndarray
+        The wave step ``R`` or ``L``, ``(n_freq, m, m)``.
+    q : numpy.ndarray
+        Boundary displacements per load, ``(n_freq, m, n_load)``.
+    n : int
+        Steps (>= 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex, in the units of `q`.
+    """
+    out = np.empty((n + 1,) + q.shape, dtype=np.complex128)
+    out[0] = q
+    cell_kernel()[2](np.ascontiguousarray(step), int(n), out)
+    return out
+
+
+def _abs2(z: complex) -> float:
+    """``|z|^2``."""
+    return z.real * z.real + z.imag * z.imag
+
+
+def _lu_solve(a: Any, b: Any, hi: Any) -> None:
+    """``b <- a^-1 b`` in place (`a` overwritten): elimination with partial pivoting.
+
+    Each row's last nonzero column is tracked in the scratch `hi` (a cell's matrix is
+    nearly banded), so that the products with exact zeros, which change nothing, are
+    skipped.
+    """
+    n = a.shape[0]
+    r = b.shape[1]
+    for i in range(n):
+        hi[i] = i
+        for q in range(n - 1, i, -1):
+            if a[i, q] != 0.0:
+                hi[i] = q
+                break
+    for j in range(n):
+        p = j
+        best = abs(a[j, j].real) + abs(a[j, j].imag)
+        for i in range(j + 1, n):
+            v = abs(a[i, j].real) + abs(a[i, j].imag)
+            if v > best:
+                best = v
+                p = i
+        if p != j:
+            for q in range(n):
+                t = a[j, q]
+                a[j, q] = a[p, q]
+                a[p, q] = t
+            for q in range(r):
+                t = b[j, q]
+                b[j, q] = b[p, q]
+                b[p, q] = t
+            t_hi = hi[j]
+            hi[j] = hi[p]
+            hi[p] = t_hi
+        end = max(hi[j], j) + 1
+        inv = 1.0 / a[j, j]
+        for i in range(j + 1, n):
+            g = a[i, j] * inv
+            if g != 0.0:
+                for q in range(j + 1, end):
+                    a[i, q] -= g * a[j, q]
+                for q in range(r):
+                    b[i, q] -= g * b[j, q]
+                if end - 1 > hi[i]:
+                    hi[i] = end - 1
+    for j in range(n - 1, -1, -1):
+        inv = 1.0 / a[j, j]
+        end = max(hi[j], j) + 1
+        for q in range(r):
+            v = b[j, q]
+            for i in range(j + 1, end):
+                v -= a[j, i] * b[i, q]
+            b[j, q] = v * inv
+
+
+def _eq_solve(a: Any, b: Any, s: Any, hi: Any) -> None:
+    """``b <- a^-1 b`` in place, rows and columns scaled by ``|diag a|^(-1/2)`` (`a` overwritten).
+
+    `s` and `hi` are scratch (at least as long as `a`).
+    """
+    n = a.shape[0]
+    for i in range(n):
+        s[i] = 1.0 / np.sqrt(abs(a[i, i]))
+    for i in range(n):
+        for j in range(n):
+            a[i, j] *= s[i] * s[j]
+        for q in range(b.shape[1]):
+            b[i, q] *= s[i]
+    _lu_solve(a, b, hi)
+    for i in range(n):
+        for q in range(b.shape[1]):
+            b[i, q] *= s[i]
+
+
+def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
+    k: Any,
+    bnd: Any,
+    inner: Any,
+    max_doublings: int,
+    converged: float,
+    blocks: Any,
+    response: Any,
+    unconverged: Any,
+) -> None:
+    """Condensation, doubling and wave steps of each frequency (:func:`wave_chain`)."""
+    n_freq = k.shape[0]
+    nb = bnd.size
+    ni = inner.size
+    m = nb // 2
+    kii = np.empty((ni, ni), dtype=np.complex128)
+    x = np.empty((ni, nb), dtype=np.complex128)
+    kbb = np.empty((nb, nb), dtype=np.complex128)
+    a = np.empty((m, m), dtype=np.complex128)
+    b = np.empty((m, m), dtype=np.complex128)
+    c = np.empty((m, m), dtype=np.complex128)
+    e = np.empty((m, m), dtype=np.complex128)
+    sm = np.empty((m, m), dtype=np.complex128)
+    y = np.empty((m, 2 * m), dtype=np.complex128)
+    s = np.empty(m)
+    scratch = np.empty(max(ni, m))
+    hi = np.empty(max(ni, m), dtype=np.int64)
+    z = np.empty((m, m), dtype=np.complex128)
+    for f in range(n_freq):
+        for i in range(ni):
+            for j in range(ni):
+                kii[i, j] = k[f, inner[i], inner[j]]
+            for j in range(nb):
+                x[i, j] = k[f, inner[i], bnd[j]]
+        if ni:
+            _eq_solve(kii, x, scratch, hi)
+        for i in range(ni):
+            for j in range(nb):
+                response[f, i, j] = -x[i, j]
+        for i in range(nb):
+            for j in range(nb):
+                v = k[f, bnd[i], bnd[j]]
+                for q in range(ni):
+                    v -= k[f, bnd[i], inner[q]] * x[q, j]
+                kbb[i, j] = v
+        for i in range(m):
+            for j in range(m):
+                blocks[0, f, i, j] = kbb[i, j]
+                blocks[1, f, i, j] = kbb[i, m + j]
+                blocks[2, f, i, j] = kbb[m + i, j]
+                blocks[3, f, i, j] = kbb[m + i, m + j]
+        # the doubling, equilibrated by the boundary DOFs' diagonal of A + E
+        for i in range(m):
+            s[i] = 1.0 / np.sqrt(abs(kbb[i, i] + kbb[m + i, m + i]))
+        for i in range(m):
+            for j in range(m):
+                w = s[i] * s[j]
+                a[i, j] = kbb[i, j] * w
+                b[i, j] = kbb[i, m + j] * w
+                c[i, j] = kbb[m + i, j] * w
+                e[i, j] = kbb[m + i, m + j] * w
+        done = False
+        for _ in range(max_doublings):
+            for i in range(m):
+                for j in range(m):
+                    sm[i, j] = e[i, j] + a[i, j]
+                    y[i, j] = c[i, j]
+                    y[i, m + j] = b[i, j]
+            _lu_solve(sm, y, hi)
+            size = 0.0
+            coupling = 0.0
+            for i in range(m):  # new blocks into sm (A), kbb's first rows as scratch
+                for j in range(m):
+                    va = a[i, j]
+                    ve = e[i, j]
+                    vb = 0.0j
+                    vc = 0.0j
+                    for q in range(m):
+                        va -= b[i, q] * y[q, j]
+                        ve -= c[i, q] * y[q, m + j]
+                        vb -= b[i, q] * y[q, m + j]
+                        vc -= c[i, q] * y[q, j]
+                    sm[i, j] = va
+                    kbb[i, j] = ve
+                    kbb[i, m + j] = vb
+                    kbb[m + i, j] = vc
+            for i in range(m):  # the largest squared magnitudes (no square roots)
+                for j in range(m):
+                    a[i, j] = sm[i, j]
+                    e[i, j] = kbb[i, j]
+                    b[i, j] = kbb[i, m + j]
+                    c[i, j] = kbb[m + i, j]
+                    size = max(size, _abs2(a[i, j]), _abs2(e[i, j]))
+                    coupling = max(coupling, _abs2(b[i, j]), _abs2(c[i, j]))
+            if coupling <= converged**2 * size:
+                done = True
+                break
+        unconverged[f] = not done
+        for i in range(m):
+            for j in range(m):
+                w = s[i] * s[j]
+                blocks[4, f, i, j] = a[i, j] / w
+                blocks[5, f, i, j] = e[i, j] / w
+        # R = -(E + P_r)^-1 C, L = -(P_l + A)^-1 B
+        for side in range(2):
+            for i in range(m):
+                for j in range(m):
+                    if side == 0:
+                        sm[i, j] = blocks[3, f, i, j] + blocks[4, f, i, j]
+                        y[i, j] = blocks[2, f, i, j]
+                    else:
+                        sm[i, j] = blocks[5, f, i, j] + blocks[0, f, i, j]
+                        y[i, j] = blocks[1, f, i, j]
+            for i in range(m):
+                for j in range(m):
+                    z[i, j] = y[i, j]
+            _eq_solve(sm, z, scratch, hi)
+            for i in range(m):
+                for j in range(m):
+                    blocks[6 + side, f, i, j] = -z[i, j]
+
+
+def _loaded_points(k: Any, left: Any, right: Any, p_l: Any, p_r: Any, load: Any, out: Any) -> None:
+    """The loaded cell with both chains, per unit load (:func:`loaded_cell`)."""
+    n_freq = k.shape[0]
+    n = k.shape[1]
+    m = left.size
+    a = np.empty((n, n), dtype=np.complex128)
+    rhs = np.empty((n, load.size), dtype=np.complex128)
+    scratch = np.empty(n)
+    hi = np.empty(n, dtype=np.int64)
+    for f in range(n_freq):
+        for i in range(n):
+            for j in range(n):
+                a[i, j] = k[f, i, j]
+        for i in range(m):
+            for j in range(m):
+                a[left[i], left[j]] += p_l[f, i, j]
+                a[right[i], right[j]] += p_r[f, i, j]
+        rhs[:] = 0.0
+        for q in range(load.size):
+            rhs[load[q], q] = 1.0
+        _eq_solve(a, rhs, scratch, hi)
+        for i in range(n):
+            for q in range(load.size):
+                out[f, i, q] = rhs[i, q]
+
+
+def _propagate_points(step: Any, n: int, out: Any) -> None:
+    """``out[k + 1] = step out[k]`` for ``k < n`` at each frequency (:func:`propagated`)."""
+    m = step.shape[1]
+    n_load = out.shape[3]
+    for f in range(step.shape[0]):
+        for k in range(n):
+            for i in range(m):
+                for q in range(n_load):
+                    v = 0.0j
+                    for j in range(m):
+                        v += step[f, i, j] * out[k, f, j, q]
+                    out[k + 1, f, i, q] = v
+
+
+def _assemble_points(
+    span_nodes: Any, span_blocks: Any, spring_dofs: Any, spring_values: Any, out: Any
+) -> None:
+    """Add the spans and springs into `out` at each frequency (:func:`assembled`)."""
+    for f in range(out.shape[0]):
+        for s in range(span_nodes.shape[0]):
+            for i in range(4):
+                di = 2 * span_nodes[s, i // 2] + i % 2
+                for j in range(4):
+                    out[f, di, 2 * span_nodes[s, j // 2] + j % 2] += span_blocks[s, f, i, j]
+        for s in range(spring_dofs.shape[0]):
+            i = spring_dofs[s, 0]
+            j = spring_dofs[s, 1]
+            v = spring_values[s, f]
+            out[f, i, i] += v
+            if j >= 0:
+                out[f, j, j] += v
+                out[f, i, j] -= v
+                out[f, j, i] -= v
+
+
+#: the plain Python functions (the kernel before compilation: the same numbers, slowly)
+_PLAIN = {name: globals()[name] for name in _FUNCTIONS}
