@@ -52,7 +52,7 @@ def summary_text(
 
 
 def summary_csv(table: pd.DataFrame, header: Sequence[str] = (), footer: Sequence[str] = ()) -> str:
-    """The summary as CSV text: ``# `` comment lines (header, footer, units), then the table.
+    """The summary as CSV text: ``"# "`` comment lines (header, footer, units), then the table.
 
     Parameters
     ----------
