@@ -55,6 +55,7 @@ LAYERS = {
     "nonstationary": 9,
     "cli": 10,
     "__init__": 10,
+    "__main__": 11,
 }
 
 
