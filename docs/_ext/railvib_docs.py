@@ -36,7 +36,6 @@ from sphinx.pycode import ModuleAnalyzer
 from sphinx.util import logging
 
 import railvib
-from railvib.cli.main import cli
 from railvib.models import FAMILIES
 
 LOGGER = logging.getLogger(__name__)
@@ -334,6 +333,8 @@ def _commands(group: click.Command, path: list[str]) -> list[tuple[list[str], cl
 
 def cli_page(srcdir: Path) -> None:
     """``cli.md``: the ``--help`` of every command."""
+    from railvib.cli.main import cli  # here: importing it installs the CLI's Ctrl-C hook
+
     parts = [
         "# Command line\n\n"
         "Every command's `--help` (generated when this site is built). Bad input is one "
