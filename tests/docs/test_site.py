@@ -23,11 +23,8 @@ ROOT = Path(__file__).resolve().parents[2]
 GENERATED = ("_build", "api", "families", "auto_gallery", "cli.md", "sg_execution_times.rst")
 
 
-@pytest.fixture(scope="module")
-def site(tmp_path_factory):
-    for module in ("sphinx", "numpydoc", "myst_parser", "sphinx_gallery", "pydata_sphinx_theme"):
-        pytest.importorskip(module, reason="the docs extra: pip install -e '.[docs]'")
-    tmp = tmp_path_factory.mktemp("site")
+def _build(tmp):
+    """Build a copy of docs/ under `tmp`: (the finished process, the HTML folder)."""
     shutil.copytree(
         ROOT / "docs", tmp / "docs", ignore=shutil.ignore_patterns(*GENERATED, "__pycache__")
     )
@@ -46,16 +43,20 @@ def site(tmp_path_factory):
     return proc, out
 
 
+# one test, so that pytest-xdist does not build the site once per worker
 @pytest.mark.slow  # one Sphinx build: about 35 s of CPU (autodoc imports, the gallery runs)
-def test_the_site_builds_with_warnings_as_errors(site):
-    proc, _ = site
+def test_the_site_builds_with_warnings_as_errors_and_has_its_pages(tmp_path):
+    for module in ("sphinx", "numpydoc", "myst_parser", "sphinx_gallery", "pydata_sphinx_theme"):
+        pytest.importorskip(module, reason="the docs extra: pip install -e '.[docs]'")
+    proc, out = _build(tmp_path)
     assert proc.returncode == 0, proc.stderr[-6000:]
     assert not re.search(r"WARNING|ERROR", proc.stderr), proc.stderr[-6000:]
+    _one_page_per_model_family_with_every_member_and_key(out)
+    _the_api_reference_documents_the_public_names(out)
+    _the_gallery_ran_and_the_other_pages_are_there(out)
 
 
-@pytest.mark.slow
-def test_one_page_per_model_family_with_every_member_and_key(site):
-    _, out = site
+def _one_page_per_model_family_with_every_member_and_key(out):
     index = (out / "models.html").read_text(encoding="utf-8")
     for name, registry in FAMILIES.items():
         assert f"families/{name}.html" in index
@@ -66,9 +67,7 @@ def test_one_page_per_model_family_with_every_member_and_key(site):
                 assert p.key in page, f"{name}.{member.name}: {p.key}"
 
 
-@pytest.mark.slow
-def test_the_api_reference_documents_the_public_names(site):
-    _, out = site
+def _the_api_reference_documents_the_public_names(out):
     pads = (out / "api" / "railvib.pads.html").read_text(encoding="utf-8")
     # defined in railvib.pads.base, listed in railvib.pads.__all__: documented once, there
     assert 'id="railvib.pads.base.PadModel"' in pads
@@ -78,9 +77,7 @@ def test_the_api_reference_documents_the_public_names(site):
     assert "Parameters" in solve  # numpydoc rendered the sections
 
 
-@pytest.mark.slow
-def test_the_gallery_ran_and_the_other_pages_are_there(site):
-    _, out = site
+def _the_gallery_ran_and_the_other_pages_are_there(out):
     for script in sorted((ROOT / "docs" / "gallery").glob("plot_*.py")):
         assert (out / "auto_gallery" / f"{script.stem}.html").is_file()
         figures = list((out / "_images").glob(f"sphx_glr_{script.stem}_*.png"))

@@ -66,23 +66,24 @@ def _metadata(wheel: Path):
         return Parser().parsestr(zf.read(name).decode()), zf.namelist()
 
 
-@pytest.fixture(scope="module")
-def tagged_wheel(tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("wheel")
-    src = _copy_checkout(tmp / "src")
+# one test per wheel built, so that pytest-xdist does not build it once per worker
+@pytest.mark.slow  # builds a wheel (about 15 s) and a venv
+def test_the_tagged_wheel_has_its_version_metadata_and_runs_in_a_fresh_venv(tmp_path):
+    src = _copy_checkout(tmp_path / "src")
     _tag(src, "v1.2.3")  # the version is read from this tag, not from a file
-    return _build_wheel(src, tmp / "dist")
+    wheel = _build_wheel(src, tmp_path / "dist")
+    _the_version_comes_from_the_git_tag(wheel)
+    _conda_forge_metadata_license_classifiers_and_bounds(wheel)
+    _the_wheel_installs_in_a_fresh_venv_and_runs(wheel, tmp_path)
 
 
-@pytest.mark.slow  # builds a wheel (about 15 s)
-def test_the_version_comes_from_the_git_tag(tagged_wheel):
+def _the_version_comes_from_the_git_tag(tagged_wheel):
     meta, _ = _metadata(tagged_wheel)
     assert meta["Version"] == "1.2.3"
     assert tagged_wheel.name.startswith("railvib-1.2.3-")
 
 
-@pytest.mark.slow
-def test_conda_forge_metadata_license_classifiers_and_bounds(tagged_wheel):
+def _conda_forge_metadata_license_classifiers_and_bounds(tagged_wheel):
     meta, names = _metadata(tagged_wheel)
     assert meta["License-Expression"] == "BSD-3-Clause"
     assert meta["License-File"] == "LICENSE"
@@ -100,8 +101,7 @@ def test_conda_forge_metadata_license_classifiers_and_bounds(tagged_wheel):
     assert "railvib/presets/cases/wang2017_metro.toml" in names  # package data
 
 
-@pytest.mark.slow
-def test_the_wheel_installs_in_a_fresh_venv_and_runs(tagged_wheel, tmp_path):
+def _the_wheel_installs_in_a_fresh_venv_and_runs(tagged_wheel, tmp_path):
     env_dir = tmp_path / "venv"
     venv.EnvBuilder(with_pip=True).create(env_dir)
     py = env_dir / "bin" / "python"
