@@ -328,14 +328,14 @@ def _attrs(unit: str, long_name: str) -> dict[str, str]:
 
 
 def decay_rate_csv(ds: xr.Dataset, header: list[str] | None = None) -> str:
-    """The decay-rate table of a track dataset as CSV text (``# `` header lines first).
+    """The decay-rate table of a track dataset as CSV text (``"# "`` header lines first).
 
     Parameters
     ----------
     ds : xarray.Dataset
         A dataset of :func:`track_dataset`.
     header : list of str, optional
-        Lines written first, each after ``# ``.
+        Lines written first, each after ``"# "``.
 
     Returns
     -------

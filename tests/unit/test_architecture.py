@@ -59,6 +59,7 @@ LAYERS = {
     "explore": 9,
     "cli": 10,
     "__init__": 10,
+    "__main__": 11,
 }
 
 

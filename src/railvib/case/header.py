@@ -75,7 +75,7 @@ def case_header(case: Case) -> list[str]:
     -------
     list of str
         ``"<what>: <value>"`` lines, without a comment marker (each writer adds its
-        own: ``# `` in CSV, ``- `` in Markdown). Speeds in km/h and m/s, the pad
+        own: ``"# "`` in CSV, ``"- "`` in Markdown). Speeds in km/h and m/s, the pad
         temperature in degC, frequencies in Hz and the wavelengths they stand for at
         this speed in m.
     """

@@ -419,7 +419,21 @@ class CriteriaSection(Section):
 
 
 class Case(Section):
-    """A complete railvib case: vehicle, track, contact, operation, irregularity, grid."""
+    """A complete railvib case: vehicle, track, contact, operation, irregularity, grid.
+
+    Attributes
+    ----------
+    vehicle : VehicleSection
+        The ``[vehicle]`` section (`railvib models vehicle`).
+    track : TrackSection
+        The ``[track]`` section (`railvib models track`).
+    contact : ContactSection
+        The ``[contact]`` section: Hertz contact.
+    frequency : FrequencySection
+        The ``[frequency]`` grid, Hz.
+    output : OutputSection
+        The ``[output]`` section: RMS bands and the loss-of-contact threshold.
+    """
 
     title: str = Field("railvib case", description="free text shown in outputs")
     rail_model: Literal["single_rail", "rail_pair", "half_car"] = Field(

@@ -46,8 +46,24 @@ from railvib.errors import DamagedOutputWarning, PlausibilityWarning, RailvibErr
 __all__ = ["cli", "main"]
 
 
+def _print_version(ctx: click.Context, _param: click.Parameter, value: bool) -> None:
+    """``--version``: the installed version (``unknown`` when run from a source tree)."""
+    if value and not ctx.resilient_parsing:
+        from railvib.io import railvib_version
+
+        click.echo(f"railvib, version {railvib_version()}")
+        ctx.exit()
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(package_name="railvib")
+@click.option(
+    "--version",
+    is_flag=True,
+    expose_value=False,
+    is_eager=True,
+    callback=_print_version,
+    help="Show the version (from the git tag of the installed build) and exit.",
+)
 def cli() -> None:
     """railvib: random vibration of a vehicle on an infinite periodic track.
 

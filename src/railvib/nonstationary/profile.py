@@ -50,7 +50,7 @@ class SpeedProfile:
 
     @classmethod
     def uniform(cls, v_start: float, v_end: float, acceleration: float) -> SpeedProfile:
-        """From `v_start` to `v_end` (m/s) at the constant |acceleration| (m/s^2, > 0)."""
+        """From `v_start` to `v_end` (m/s) at the constant ``|acceleration|`` (m/s^2, > 0)."""
         duration = abs(v_end - v_start) / acceleration
         return cls(
             np.array([0.0, duration]),
@@ -77,7 +77,7 @@ class SpeedProfile:
 
     @property
     def acceleration_max(self) -> float:
-        """Largest |acceleration|, m/s^2."""
+        """Largest ``|acceleration|``, m/s^2."""
         return float(np.max(np.abs(np.diff(self.v) / np.diff(self.t))))
 
     def _segment(self, time: ArrayLike) -> tuple[NDArray[np.intp], NDArray[np.float64]]:

@@ -56,12 +56,12 @@ MAX_DAMPING_NS_PER_M = 1e12
 #: largest relaxation time of a pad model, s (about 300 years)
 MAX_RELAXATION_TIME_S = 1e10
 
-#: loss stiffness taken as round-off by :meth:`PadModel.check_passive`, relative to |K*|.
+#: loss stiffness taken as round-off by :meth:`PadModel.check_passive`, relative to ``|K*|``.
 #: ``K*`` is evaluated in double precision by a few operations (a complex power, a
 #: division, a product with the vertical TTS factor), each rounding by up to eps/2 of
-#: |K*|, so where the true ``K''`` is 0 or tiny the computed one can be a few eps |K*|
+#: ``|K*|``, so where the true ``K''`` is 0 or tiny the computed one can be a few eps ``|K*|``
 #: below it (e.g. ``K*(9.2 Hz) = 1.352e+08 - 6.6e-09j`` N/m for a Zener pad at -85 degC:
-#: -5e-17 |K*|). 16 eps = 3.6e-15 is a loss factor 12 orders of magnitude below that of
+#: -5e-17 ``|K*|``). 16 eps = 3.6e-15 is a loss factor 12 orders of magnitude below that of
 #: any real pad (>= 1e-3), so no physical loss of passivity hides below it.
 PASSIVITY_TOLERANCE = 16 * float(np.finfo(float).eps)
 
@@ -189,7 +189,7 @@ class PadModel(ABC):
     ) -> None:
         """Raise :class:`~railvib.errors.CaseError` unless ``K' > 0`` and ``K'' >= 0`` at all `f`.
 
-        A loss stiffness down to ``-PASSIVITY_TOLERANCE |K*|`` (16 eps |K*|) is taken as
+        A loss stiffness down to ``-PASSIVITY_TOLERANCE |K*|`` (16 eps ``|K*|``) is taken as
         round-off, not as a pad that gives energy back: see :data:`PASSIVITY_TOLERANCE`.
 
         Parameters

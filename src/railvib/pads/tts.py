@@ -49,7 +49,7 @@ DEFAULT_EXPANSION_COEFFICIENT_PER_K = 4.8e-4
 WLF_SPAN_ABOVE_TG_K = 100.0
 #: Half-width of the trusted window about the reference temperature when Tg is unknown, K.
 WLF_WINDOW_WITHOUT_TG_K = 80.0
-#: Largest |log10 a_T| a temperature may give (decades). Measured master curves span 10-20
+#: Largest ``|log10 a_T|`` a temperature may give (decades). Measured master curves span 10-20
 #: decades; at 100, the reduced frequency f a_T of any grid frequency (<= 1e5 Hz) stays
 #: below 1e105 and its square (Maxwell branches, complex division) below 1e210, within
 #: float64 (1.8e308). Nearer to the WLF singularity T0 - C2 (within 7.7 K for the

@@ -57,7 +57,7 @@ def summary_csv(
     footer: Sequence[str] = (),
     extra: Sequence[tuple[str, pd.DataFrame]] = (),
 ) -> str:
-    """The summary as CSV text: ``# `` comment lines (header, footer, units), then the table.
+    """The summary as CSV text: ``"# "`` comment lines (header, footer, units), then the table.
 
     Parameters
     ----------

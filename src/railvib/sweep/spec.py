@@ -109,6 +109,17 @@ class AxisSpec(_Model):
     Give exactly one of ``values``; ``start``/``stop`` with ``num`` (inclusive,
     ``spacing = "linear"`` or ``"log"``); or ``start``/``stop``/``step``
     (linear, ``stop`` included where it lands).
+
+    Attributes
+    ----------
+    start, stop : float or None
+        First and last value of a range, in the unit of `field`.
+    num : int or None
+        Number of values from `start` to `stop` (both included).
+    step : float or None
+        Step of a linear range, in the unit of `field`.
+    spacing : {"linear", "log"}
+        Spacing of a `num` range.
     """
 
     field: str = Field(..., min_length=1, description="dotted case field, e.g. speed_kmh")
@@ -181,7 +192,21 @@ class AxisSpec(_Model):
 
 
 class SweepFile(_Model):
-    """The parsed sweep file (before the base case is resolved)."""
+    """The parsed sweep file (before the base case is resolved).
+
+    Attributes
+    ----------
+    title : str
+        Free text shown in the outputs.
+    mode : {"product", "zip"}
+        Every combination of the axes' values, or the axes varied together.
+    variables : list of str
+        Per-frequency variables stored for every case (the summary always is).
+    summary_variable : {"psd_acceleration", "psd_displacement"}
+        The PSD the summary statistics are taken from.
+    axes : list of AxisSpec
+        The sweep axes.
+    """
 
     title: str = "railvib sweep"
     base: str | None = Field(None, description="path of a base case file (relative to the sweep)")

@@ -104,6 +104,15 @@ class Wheel:
 
     The name labels the rail under it (``rail@<name>``); empty: ``wheel<j>``, ``j`` its
     place from the front (from 1).
+
+    Attributes
+    ----------
+    body : str
+        The body that carries the wheel (a wheelset).
+    x : float
+        Position of the contact in the vehicle frame, m.
+    name : str
+        The wheel's label; empty: numbered from the front.
     """
 
     body: str
