@@ -9,7 +9,7 @@ on a sleeper at ``t = 0``; wheel ``i`` passes one at ``-x_i / v``)::
     phi_i = 2 pi x_i / d,   Omega_s = 2 pi v / d.
 
 With the contact forces a harmonic series on ``Omega + m Omega_s`` (``m = -N .. N``), the
-rail under the wheels is the same series with the blocks
+rail under the wheels is the same series with the blocks::
 
     R[q, m]_ji = A_{q-m}(Omega + m Omega_s, r_ji) exp(i (q - m) phi_i),   |q - m| <= N,
 
@@ -50,7 +50,7 @@ __all__ = [
     "harmonic_blocks",
 ]
 
-#: default harmonic order N: the moving-load harmonics |n| >= 2 are below 1e-3 of A_0 on
+#: default harmonic order N: the moving-load harmonics ``|n| >= 2`` are below 1e-3 of A_0 on
 #: ballasted track away from the split pinned-pinned peaks (docs/moving-load.md)
 DEFAULT_ORDER = 3
 

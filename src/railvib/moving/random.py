@@ -12,7 +12,7 @@ harmonic slot at once gives both:
   phase-resolved (evolutionary) PSD ``|sum_n H_n(f) exp(i n Omega_s tau)|^2 S_r(f)`` shows
   the variation over the sleeper period (``tau`` in ``[0, d / v)``, input frequency ``f``);
 * the input in slot ``-n``, the response in slot 0: ``H_n(f - n v / d)``
-  (:attr:`MovingFRF.arriving`), so the time-averaged PSD on the grid itself is
+  (:attr:`MovingFRF.arriving`), so the time-averaged PSD on the grid itself is::
 
       S_y(f) = sum_n |H_n(f - n v / d)|^2 S_r(|f - n v / d|),
 

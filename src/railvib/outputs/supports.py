@@ -108,13 +108,13 @@ def support_force_variables(
             support = track.seat_forces(f, system.wheel_positions, contact)
         except NotImplementedError:  # a continuous foundation: no discrete supports
             return {}
-        seats, names = support.x, list(support.force)
+        slab_layers = list(support.force)
         per_slab_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
         psd = np.stack(
-            [np.abs(support.force[name] / per_slab_rail) ** 2 * s_r[:, None] for name in names],
+            [np.abs(support.force[name] / per_slab_rail) ** 2 * s_r[:, None] for name in slab_layers],
             axis=-1,
         )  # (frequency, wheel, layer)
-        return _variables(f, seats, names, psd)
+        return _variables(f, support.x, slab_layers, psd)
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
     if not gives_seat_forces(system, f):  # a track without seats modelled one by one
         return {}

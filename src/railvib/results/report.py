@@ -69,7 +69,7 @@ def summary_csv(
         Further lines of the header block (the contact check).
     extra : sequence of (str, pandas.DataFrame)
         Further tables (a train's per-car table), each written in the comment block as
-        ``# <title>:`` and its CSV lines, each after ``# `` (strip it to read the table).
+        ``# <title>:`` and its CSV lines, each after ``"# "`` (strip it to read the table).
 
     Returns
     -------
