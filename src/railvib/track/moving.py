@@ -499,7 +499,9 @@ def _starting_panels(
     rail = track.rail
     k_bend = (rail.mass_per_length * (2.0 * np.pi * f_max) ** 2 / rail.bending_stiffness) ** 0.25
     tail_factor = _TAIL_FACTOR
-    if rail.shear_stiffness is not None:  # shear makes the rail softer: a larger wavenumber
+    if rail.shear_stiffness is not None:
+        tail_factor = _TAIL_FACTOR_TIMOSHENKO
+    if rail.shear_stiffness is not None and f_max > 0.0:  # shear: a softer rail, larger k
         omega2 = (2.0 * np.pi * f_max) ** 2
         beta4 = np.array([rail.mass_per_length * omega2 * d**4 / rail.bending_stiffness + 0j])
         rho_eps = np.array([rail.rotary_inertia * omega2 / rail.shear_stiffness + 0j])
@@ -507,7 +509,6 @@ def _starting_panels(
         rho = np.asarray(rho_eps / eps, dtype=np.complex128)
         a2 = wavenumbers(beta4, eps, rho, rho_eps)[0]
         k_bend = max(k_bend, float(np.abs(np.sqrt(a2[0]))) / d)
-        tail_factor = _TAIL_FACTOR_TIMOSHENKO
     n_units = 2 * (order + 1) + int(np.ceil(4.0 * k_bend / unit)) + 1
     n_panels = int(np.ceil(n_units / _PANEL))
     k_core = n_units * unit

@@ -101,6 +101,9 @@ _IMAGE_TAIL = (
     / (2.0 * np.pi) ** 4
 )
 
+#: the Laurent series of ``1 / (4 sin^2(x/2)) - 1/x^2 - 1/12`` in ``x^2`` (that of csc^2)
+_CSC2_SERIES = (1.0 / 240.0, 1.0 / 6048.0, 1.0 / 172800.0, 1.0 / 5322240.0, 691.0 / 118879488000.0)
+
 _KERNEL: list[Any] = []
 
 
@@ -197,6 +200,7 @@ def panel_rules(
             _GAUSS,
             OMEGA_FLOOR,
             _D1_SERIES,
+            _CSC2_SERIES,
             rule,
             error,
         )
@@ -261,10 +265,11 @@ def integrand(
         )
         g0 = (eps * (k * d) ** 2 + 1.0 - rho_eps) / ((k * d) ** 4 - q * (k * d) ** 2 - g)
     rest = lattice - g0  # the images m != 0: digits lost where G_0 dominates ...
-    if len(rail) == 4:
-        near = np.abs(g0) > POLE_DOMINANCE * np.abs(rest)
-        if np.any(near):  # ... so summed directly there
-            rest[near] = _euler_images(k[near] * d, beta4[near])
+    near = np.abs(g0) > POLE_DOMINANCE * np.abs(rest)
+    if np.any(near) and len(rail) == 4:  # ... so summed directly there
+        rest[near] = _euler_images(k[near] * d, beta4[near])
+    elif np.any(near):
+        rest[near] = _timoshenko_images(k[near] * d, eps, q[near], g[near], 1.0 - rho_eps[near])
     scale = d**4 / ei_c  # m/N per unit of the dimensionless sums and G
     kk = support * scale
     base = d + kk * rest
@@ -323,6 +328,45 @@ def _euler_images(kd: NDArray[np.float64], beta4: NDArray[np.complex128]) -> NDA
     b = beta4[..., None]
     pairs = 1.0 / ((x + m) ** 4 - b) + 1.0 / ((x - m) ** 4 - b)
     return np.asarray(pairs.sum(axis=-1) + _IMAGE_TAIL, dtype=np.complex128)
+
+
+def _timoshenko_images(
+    kd: NDArray[np.float64],
+    eps: float,
+    q: NDArray[np.complex128],
+    g: NDArray[np.complex128],
+    n0: NDArray[np.complex128],
+) -> NDArray[np.complex128]:
+    """``sum_(m != 0) g(kd + 2 pi m)`` of :func:`timoshenko_lattice_sum`, summed directly.
+
+    ``g(x) = eps / x^2 + h(x)``, ``h(x) = ((n0 + eps q) x^2 + eps g) / (x^2 (x^4 - q x^2 -
+    g))``: the images of ``eps / x^2`` in closed form (:func:`_inverse_square_images`), those
+    of ``h`` as :func:`_euler_images` (:data:`IMAGES` pairs, the rest as ``(n0 + eps q) / x^4``).
+    """
+    m = 2.0 * np.pi * np.arange(1, IMAGES + 1)
+    c2, c0 = (n0 + eps * q)[..., None], (eps * g)[..., None]
+    qq, gg = q[..., None], g[..., None]
+    total = np.zeros(np.shape(kd), dtype=np.complex128)
+    for x in (kd[..., None] + m, kd[..., None] - m):
+        x2 = x * x
+        total += ((c2 * x2 + c0) / (x2 * (x2 * x2 - qq * x2 - gg))).sum(axis=-1)
+    tail = (n0 + eps * q) * _IMAGE_TAIL
+    return np.asarray(eps * _inverse_square_images(kd) + total + tail, dtype=np.complex128)
+
+
+def _inverse_square_images(kd: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``sum_(m != 0) 1 / (kd + 2 pi m)^2 = 1 / (4 sin^2(kd / 2)) - 1 / kd^2`` (1/12 at 0).
+
+    By its Laurent series below ``|kd| = 1/2`` (the next term leaves < 1e-13 there),
+    without the cancellation of the closed form.
+    """
+    t2 = kd * kd
+    c1, c2, c3, c4, c5 = _CSC2_SERIES
+    series = 1.0 / 12.0 + t2 * (c1 + t2 * (c2 + t2 * (c3 + t2 * (c4 + t2 * c5))))
+    small = np.abs(kd) < 0.5
+    safe = np.where(small, 1.0, kd)
+    closed = 0.25 / np.sin(0.5 * safe) ** 2 - 1.0 / (safe * safe)
+    return np.asarray(np.where(small, series, closed), dtype=np.float64)
 
 
 def timoshenko_lattice_sum(
@@ -403,13 +447,15 @@ def _panels(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compil
     w_gauss: Any,
     omega_floor: float,
     series: Any,
+    csc2: Any,
     rule: Any,
     error: Any,
 ) -> None:
     """:func:`panel_rules` node by node, written for numba (fills `rule` and `error`).
 
     ``shear = 0``: an Euler rail; else a Timoshenko rail (:func:`timoshenko_lattice_sum`,
-    with the coefficients `series` of its divided difference ``D1``).
+    with the coefficients `series` of its divided difference ``D1``; `csc2`: those of
+    :func:`_inverse_square_images`).
     """
     n_harm, n_obs = shift.size, r.size
     d4 = d**4
@@ -488,12 +534,28 @@ def _panels(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compil
                 lattice = numerator / (8.0 * (a_k - pp) * (a_k + qp))
                 t2 = theta * theta
                 g0 = 1.0 / (t2 * t2 - beta4)
-            rest = lattice - g0  # the images m != 0 (_euler_images where G_0 dominates)
-            if not timoshenko and abs(g0) > POLE_DOMINANCE * abs(rest):
+            rest = lattice - g0  # the images m != 0 (summed directly where G_0 dominates)
+            if abs(g0) > POLE_DOMINANCE * abs(rest) and not timoshenko:  # _euler_images
                 rest = _IMAGE_TAIL + 0j
                 for j in range(IMAGES, 0, -1):
                     xp, xm = theta + 2.0 * math.pi * j, theta - 2.0 * math.pi * j
                     rest += 1.0 / (xp**4 - beta4) + 1.0 / (xm**4 - beta4)
+            elif abs(g0) > POLE_DOMINANCE * abs(rest):  # _timoshenko_images
+                c2, c0 = n0 + eps * qq, eps * gg
+                rest = c2 * _IMAGE_TAIL + 0j
+                for j in range(IMAGES, 0, -1):
+                    for x in (theta + 2.0 * math.pi * j, theta - 2.0 * math.pi * j):
+                        x2 = x * x
+                        rest += (c2 * x2 + c0) / (x2 * (x2 * x2 - qq * x2 - gg))
+                if abs(theta) < 0.5:  # _inverse_square_images
+                    t2 = theta * theta
+                    c_1, c_2, c_3, c_4, c_5 = csc2
+                    images2 = 1.0 / 12.0 + t2 * (
+                        c_1 + t2 * (c_2 + t2 * (c_3 + t2 * (c_4 + t2 * c_5)))
+                    )
+                else:
+                    images2 = 0.25 / math.sin(0.5 * theta) ** 2 - 1.0 / (theta * theta)
+                rest += eps * images2
             # K w_0 / d = K G_0 / (d + K S), G_0 and S in units of d^4 / EI*, and
             # 1 - K w_0 / d = (d + K (S - G_0)) / (d + K S)
             scale = d4 * inv_ei

@@ -57,7 +57,8 @@ def test_python_node_loop_equals_numpy_rules():
     error = np.empty_like(ref_error)
     kernel._panels(
         mid, half, omega_load, support, 30.0, *RAIL, 0.0, 0.0, SHIFT, R, kernel.NODES,
-        kernel._KRONROD, kernel._GAUSS, kernel.OMEGA_FLOOR, kernel._D1_SERIES, rule, error,
+        kernel._KRONROD, kernel._GAUSS, kernel.OMEGA_FLOOR, kernel._D1_SERIES,
+        kernel._CSC2_SERIES, rule, error,
     )  # fmt: skip
     # the same sums in another order (and sin z from sin z/2 cos z/2): rounding, which the
     # near-singular denominators of the lattice sum amplify to ~1e-13 at worst

@@ -143,7 +143,8 @@ def test_python_node_loop_equals_numpy_rules():
     rule, error = np.empty_like(ref), np.empty(n)
     kernel._panels(
         mid, half, omega_load, support, 30.0, *rail, shift, r, kernel.NODES,
-        kernel._KRONROD, kernel._GAUSS, kernel.OMEGA_FLOOR, kernel._D1_SERIES, rule, error,
+        kernel._KRONROD, kernel._GAUSS, kernel.OMEGA_FLOOR, kernel._D1_SERIES,
+        kernel._CSC2_SERIES, rule, error,
     )  # fmt: skip
     # rounding (the same formulas, scalar): 1e-12 at worst next to a cancellation
     assert np.abs(rule - ref).max() / np.abs(ref).max() < 3e-9
