@@ -111,7 +111,10 @@ def support_force_variables(
         slab_layers = list(support.force)
         per_slab_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
         psd = np.stack(
-            [np.abs(support.force[name] / per_slab_rail) ** 2 * s_r[:, None] for name in slab_layers],
+            [
+                np.abs(support.force[name] / per_slab_rail) ** 2 * s_r[:, None]
+                for name in slab_layers
+            ],
             axis=-1,
         )  # (frequency, wheel, layer)
         return _variables(f, support.x, slab_layers, psd)
