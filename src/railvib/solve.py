@@ -275,6 +275,24 @@ def contact_check(
     }
 
 
+#: the library call that runs each other mode (``railvib run`` dispatches to them)
+_OTHER_MODES = {
+    "moving": "railvib.movingrun.run_moving / run_moving_to_folder (docs/moving-vehicle.md)",
+    "nonstationary": "railvib.nonstationary.run_nonstationary_to_folder (docs/nonstationary.md)",
+}
+
+
+def _stationary_only(case: Case) -> None:
+    """Refuse, in one line naming ``mode``, a case this stationary pipeline would misread."""
+    if case.mode in _OTHER_MODES:
+        raise CaseError(
+            "mode",
+            case.mode,
+            f'"stationary" for railvib.run / run_to_folder (the fixed-position model); '
+            f"run mode = {case.mode!r} with {_OTHER_MODES[case.mode]} or `railvib run`",
+        )
+
+
 def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
     """Run one case (a validated :class:`~railvib.case.Case` or a TOML path).
 
@@ -293,6 +311,12 @@ def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
         Response PSDs and FRFs on the case's grid (see :func:`run_system`), with the
         engineering criteria of :func:`criteria_settings`.
 
+    Raises
+    ------
+    railvib.errors.CaseError
+        Bad input, or a case of another ``mode`` (``moving``, ``nonstationary``: their own
+        library calls), before anything is computed.
+
     Examples
     --------
     >>> import railvib
@@ -302,6 +326,7 @@ def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
     """
     if not isinstance(case, Case):
         case = load_case(case, force=force)
+    _stationary_only(case)
     system, grid = build_system(case), build_grid(case)
     criteria = criteria_settings(case, system, grid.f)  # refuses bad settings before solving
     return run_system(
@@ -413,7 +438,8 @@ def run_to_folder(
     Raises
     ------
     railvib.errors.CaseError
-        Bad input, or `outdir` is not a folder (before anything is computed).
+        Bad input, a case of another ``mode`` (see :func:`run`), or `outdir` is not a
+        folder (before anything is computed or written).
     railvib.errors.OutputError
         `outdir` or one of its files cannot be written (read-only, full disk).
     railvib.errors.NonFiniteResult
@@ -421,6 +447,7 @@ def run_to_folder(
     """
     if not isinstance(case, Case):
         case = load_case(case, force=force)
+    _stationary_only(case)  # before the folder is touched
     with staged_folder(outdir, RUN_FILES) as stage:
         ds = run(case)
         table = summary_table(summary(ds, bands=case.output.rms_bands))

@@ -44,10 +44,6 @@ CASES = {
         'preset = "floating_slab_metro"\nmode = "moving"\n' + GRID.format(f_max=200, n=12),
         "track.model",
     ),
-    "timoshenko-rail": (
-        'preset = "chn60_ballasted"\nmode = "moving"\n' + GRID.format(f_max=200, n=12),
-        "track.rail.shear_stiffness",
-    ),
 }
 
 

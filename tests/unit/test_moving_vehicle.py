@@ -211,13 +211,6 @@ def test_slab_track_is_refused():
         check_moving(slab, 100.0, MovingSettings())
 
 
-def test_timoshenko_rail_is_refused():
-    rail = Rail(6.4e6, 60.0, shear_stiffness=2.5e8, rotary_inertia=0.24)
-    track = PeriodicTrack(rail, SpringDamper(2.0e8, 3.0e4), D)
-    with pytest.raises(CaseError, match=r"^track.rail.shear_stiffness = "):
-        check_moving(_system(20.0, track=track), 100.0, MovingSettings())
-
-
 def _psd_errors(speed: float) -> tuple[float, float, float]:
     """Relative errors of the time-averaged and the phase-resolved contact-force PSDs against
     the stationary solver over a bay, and the stationary PSD's variation over the bay."""

@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from railvib.case import load_case
-from railvib.errors import LinearModelInvalid
+from railvib.errors import CaseError, LinearModelInvalid
 from railvib.solve import run_to_folder
 
 __all__ = ["run_case_command"]
@@ -32,11 +32,19 @@ def run_case_command(
         Draw the PSD overview figures.
     strict : bool
         Raise :class:`~railvib.errors.LinearModelInvalid` (exit code 3) after writing
-        when the case is beyond the linear model.
+        when the case is beyond the linear model; refused (``CaseError`` on ``mode``,
+        before anything is written) for a moving or non-stationary case.
     force : bool
         Run a grid of more than 2,000,000 frequencies.
     """
     case = load_case(case_file, force=force)
+    if strict and case.mode != "stationary":  # before anything is computed or written
+        raise CaseError(
+            "mode",
+            case.mode,
+            '"stationary" with --strict (its loss-of-contact check is that of the '
+            "stationary model; this mode has none): run without --strict",
+        )
     if case.mode == "nonstationary":  # docs/nonstationary.md
         from railvib.cli.nonstationary import run_nonstationary_command
 

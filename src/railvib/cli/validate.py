@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from railvib.errors import RailvibDeprecationWarning
+from railvib.errors import CaseError, RailvibDeprecationWarning
 
 if TYPE_CHECKING:  # the library loads when a command runs, not when the CLI starts
     from rich.console import Console
@@ -189,6 +189,14 @@ def validate(
 
     folder = _output_folder(output, outdir)
     case = load_case(case_file)
+    if case.mode != "stationary":  # the three ways are the stationary model's
+        raise CaseError(
+            "mode",
+            case.mode,
+            '"stationary" for `railvib validate` (PEM, finite track and Monte Carlo of the '
+            "vehicle at a fixed position); the moving vehicle's time-domain check is "
+            "railvib.validation.moving_vehicle.simulate_moving_vehicle (docs/moving-vehicle.md)",
+        )
     system = build_system(case)
     check_scope(system)  # before the progress bar: an out-of-scope case is one line
     settings = ValidationSettings.quick() if quick else ValidationSettings()

@@ -316,7 +316,10 @@ class Explorer:
         case, notes = self.case(controls)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            ds = run(case)
+            # the page solves the stationary case only (railvib.run refuses the other modes)
+            stationary = {"mode": "stationary", "moving": None}
+            stationary |= {"speed_profile": None, "nonstationary": None}
+            ds = run(case if case.mode == "stationary" else case.model_copy(update=stationary))
         notes = (*notes, *(f"warning: {w.message}" for w in caught))
         if case.mode != "stationary":  # the page solves the stationary case only
             notes = (

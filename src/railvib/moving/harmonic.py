@@ -45,9 +45,11 @@ __all__ = [
     "DEFAULT_ORDER",
     "DEFAULT_TOLERANCE",
     "HarmonicSystem",
+    "LoadReceptances",
     "MovingSettings",
     "check_moving",
     "harmonic_blocks",
+    "load_receptances",
 ]
 
 #: default harmonic order N: the moving-load harmonics ``|n| >= 2`` are below 1e-3 of A_0 on
@@ -92,7 +94,7 @@ def check_moving(
 ) -> None:
     """Refuse, before computing, what the moving-vehicle model cannot do, in one line each.
 
-    A track without the moving-load formulation (a slab track, a Timoshenko rail), a speed
+    A track without the moving-load formulation (a slab track), a speed
     above :data:`~railvib.track.moving.SPEED_FRACTION` of the critical speed (the series
     in the sleeper-passing harmonics stops converging towards it), and a harmonic order
     too low for the speed and band: the moving-load receptance is computed at a few
@@ -112,8 +114,7 @@ def check_moving(
     Raises
     ------
     CaseError
-        ``track.model``, ``track.rail.shear_stiffness``, ``speed_kmh`` or
-        ``moving.harmonic_order``.
+        ``track.model``, ``speed_kmh`` or ``moving.harmonic_order``.
     """
     track = system.track
     try:
@@ -125,13 +126,6 @@ def check_moving(
             "a track with independent supports under the rail (rigid_base, ballasted) for "
             "mode = 'moving': the moving-load formulation needs the support of one rail seat",
         ) from None
-    if track.rail.is_timoshenko:
-        raise CaseError(
-            "track.rail.shear_stiffness",
-            track.rail.shear_stiffness,
-            "omitted for mode = 'moving' (an Euler-Bernoulli rail: the moving-load "
-            "formulation uses its free-beam Green's function) (N)",
-        )
     bound = SPEED_FRACTION * critical_speed(track)
     if not system.speed <= bound:
         raise CaseError(
@@ -225,13 +219,100 @@ class HarmonicSystem:
         return vehicle, force, rail
 
 
-def harmonic_blocks(
+@dataclass(frozen=True, eq=False)
+class LoadReceptances:
+    """Moving-load receptances between the wheels at distinct load frequencies.
+
+    Attributes
+    ----------
+    f : numpy.ndarray
+        Sorted distinct load frequencies ``|F|`` (rounded to 1e-9 Hz), Hz, ``(n_load,)``.
+    r : numpy.ndarray
+        Distinct wheel gaps ``x_j - x_i``, m, ``(n_r,)``.
+    amplitudes : numpy.ndarray
+        ``A_n(F, r)``, m/N, ``(n_load, n_r, 2 N + 1)`` (:mod:`railvib.track.moving`).
+    """
+
+    f: NDArray[np.float64]
+    r: NDArray[np.float64]
+    amplitudes: NDArray[np.complex128]
+
+    def signed(self, freqs: ArrayLike) -> NDArray[np.complex128]:
+        """``A_n(F, r)`` at signed load frequencies, m/N, ``(n, n_r, 2 N + 1)``.
+
+        ``A_n(-F) = conj A_{-n}(F)`` (a real system).
+
+        Parameters
+        ----------
+        freqs : array_like
+            Load frequencies, Hz, ``(n,)`` (any sign); each ``|F|`` must be in :attr:`f`.
+
+        Returns
+        -------
+        numpy.ndarray
+        """
+        freqs = np.asarray(freqs, dtype=float)
+        mag = np.round(np.abs(freqs), 9)
+        idx = np.minimum(np.searchsorted(self.f, mag), self.f.size - 1)
+        if not np.array_equal(self.f[idx], mag):
+            raise ValueError("load frequencies outside the table (a programming error)")
+        amp = self.amplitudes[idx]
+        negative = (freqs < 0.0)[:, None, None]
+        return np.asarray(np.where(negative, np.conj(amp[:, :, ::-1]), amp), dtype=np.complex128)
+
+
+def load_receptances(
     system: CoupledSystem, f: ArrayLike, settings: MovingSettings
+) -> LoadReceptances:
+    """The moving-load receptances the harmonic balance needs at base frequencies `f`.
+
+    One call of :func:`~railvib.track.moving.moving_load_receptance` on the sorted,
+    distinct ``|f + m v / d|`` (``|m| <= N``) of the whole grid, between every pair of
+    wheels: on a uniform grid whose spacing divides ``v / d`` most of them coincide.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle (wheel positions, m), track and speed (m/s).
+    f : array_like
+        Base frequencies, Hz (any sign).
+    settings : MovingSettings
+        Harmonic order and tolerance.
+
+    Returns
+    -------
+    LoadReceptances
+    """
+    f = np.atleast_1d(np.asarray(f, dtype=float))
+    n = settings.harmonic_order
+    passing = system.speed / system.track.sleeper_spacing
+    freqs = f[:, None] + np.arange(-n, n + 1)[None, :] * passing
+    mag = np.unique(np.round(np.abs(freqs), 9))
+    r = _wheel_gaps(system)[0]
+    res = moving_load_receptance(
+        system.track, mag, system.speed, order=n, r=r, tolerance=settings.tolerance
+    )
+    return LoadReceptances(mag, r, np.asarray(res.amplitudes, dtype=np.complex128))
+
+
+def _wheel_gaps(system: CoupledSystem) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """Distinct gaps ``r_ji = x_j - x_i`` (m) and each pair's index ``(n_w[j], n_w[i])``."""
+    x = system.wheel_positions
+    r, pair = np.unique(np.round(x[:, None] - x[None, :], 9), return_inverse=True)
+    return r, pair.reshape(x.size, x.size)
+
+
+def harmonic_blocks(
+    system: CoupledSystem,
+    f: ArrayLike,
+    settings: MovingSettings,
+    receptances: LoadReceptances | None = None,
 ) -> HarmonicSystem:
     """The harmonic-balance blocks at base frequencies `f` (Hz).
 
-    Computes the moving-load receptance at every ``|f + m v / d|`` (once per distinct
-    value) between every pair of wheels, and the vehicle's condensed stiffness there.
+    Takes the moving-load receptance at every ``|f + m v / d|`` between every pair of
+    wheels from `receptances` (computed here when not given), and the vehicle's condensed
+    stiffness there.
 
     Parameters
     ----------
@@ -241,6 +322,9 @@ def harmonic_blocks(
         Base frequencies, Hz, ``(n_freq,)`` (any sign).
     settings : MovingSettings
         Harmonic order and tolerance.
+    receptances : LoadReceptances, optional
+        From :func:`load_receptances` for these (or more) base frequencies: one table for a
+        whole grid solved in blocks.
 
     Returns
     -------
@@ -255,11 +339,10 @@ def harmonic_blocks(
     freqs = f[:, None] + orders[None, :] * passing  # (n_f, H) signed load frequencies
     x = system.wheel_positions
     n_w = x.size
-    gaps = x[:, None] - x[None, :]  # r_ji: wheel j ahead of the load at wheel i
-    r, pair = np.unique(np.round(gaps, 9), return_inverse=True)
-    pair = pair.reshape(n_w, n_w)
-    amp = _signed_receptance(track, freqs.ravel(), system.speed, n, r, settings.tolerance)
-    amp = amp.reshape(f.size, h, r.size, h)  # [k, m, r, n + N]
+    r, pair = _wheel_gaps(system)
+    if receptances is None:
+        receptances = load_receptances(system, f, settings)
+    amp = receptances.signed(freqs.ravel()).reshape(f.size, h, r.size, h)  # [k, m, r, n + N]
     phase = np.exp(1j * np.outer(orders, 2.0 * np.pi * x / track.sleeper_spacing))  # [n, i]
     rec = np.zeros((f.size, h, n_w, h, n_w), dtype=np.complex128)
     for q in range(h):
@@ -283,22 +366,3 @@ def harmonic_blocks(
         recovery.reshape(f.size, h, n_dof, n_w),
         system.contact_stiffness,
     )
-
-
-def _signed_receptance(
-    track: PeriodicTrack,
-    freqs: NDArray[np.float64],
-    speed: float,
-    order: int,
-    r: NDArray[np.float64],
-    tolerance: float,
-) -> NDArray[np.complex128]:
-    """``A_n(F, r)`` at signed load frequencies `freqs`, m/N, ``(n, n_r, 2 N + 1)``.
-
-    Computed once per distinct ``|F|``; ``A_n(-F) = conj A_{-n}(F)`` (a real system).
-    """
-    mag, back = np.unique(np.round(np.abs(freqs), 9), return_inverse=True)
-    res = moving_load_receptance(track, mag, speed, order=order, r=r, tolerance=tolerance)
-    amp = res.amplitudes[back.ravel()]
-    negative = (freqs < 0.0)[:, None, None]
-    return np.asarray(np.where(negative, np.conj(amp[:, :, ::-1]), amp), dtype=np.complex128)

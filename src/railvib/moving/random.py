@@ -31,7 +31,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from railvib.coupling import CoupledSystem
 from railvib.errors import SolverWarning
-from railvib.moving.harmonic import MovingSettings, check_moving, harmonic_blocks
+from railvib.moving.harmonic import (
+    MovingSettings,
+    check_moving,
+    harmonic_blocks,
+    load_receptances,
+)
 from railvib.pem import wheel_delays
 from railvib.response import response_labels
 from railvib.spectra.base import SpatialSpectrum
@@ -201,9 +206,10 @@ def moving_frf(
     h = 2 * n + 1
     parts: list[list[NDArray[np.complex128]]] = [[], [], [], []]
     passing = system.speed / system.track.sleeper_spacing
+    table = load_receptances(system, f, settings)  # one call, every distinct |f + m v/d|
     for start in range(0, f.size, FREQUENCY_BLOCK):
         fb = f[start : start + FREQUENCY_BLOCK]
-        blocks = harmonic_blocks(system, fb, settings)
+        blocks = harmonic_blocks(system, fb, settings, table)
         inputs = blocks.frequencies  # (n_f, H): slot c holds the input at f + c v / d
         rhs = np.zeros((fb.size, h, delays.size, h), dtype=np.complex128)
         for c in range(h):

@@ -83,6 +83,14 @@ SUMMARY_VARIABLES = ("psd_acceleration", "psd_displacement")
 _FIXED_PREFIXES = ("frequency", "output", "title")
 #: keys of a case file that are not case fields: merged before the axes apply
 _NOT_FIELDS = ("preset",)
+#: case fields of the other modes: a sweep runs the stationary model only
+_MODE_FIELDS = ("mode", "moving", "speed_profile", "nonstationary")
+#: where each other mode's sweep lives instead
+_MODE_HINT = (
+    "a sweep runs the stationary model only; the moving vehicle over speed: "
+    "railvib.movingrun.moving_speed_sweep (docs/moving-vehicle.md), a non-stationary run: "
+    "one `railvib run` per case"
+)
 #: the case fields an axis can vary (the top of their dotted names)
 _VARIABLE_FIELDS = (
     "speed_kmh, rail_model, vehicle.*, train.*, track.*, contact.* and irregularity.*"
@@ -693,7 +701,10 @@ def _resolve_base(spec: SweepFile, base_dir: Path) -> dict[str, Any]:
         # a preset stays a preset (case_from_dict merges it), so the case knows which of
         # its values the sweep file gives and which it inherits (e.g. the RMS bands)
         data = merge_case_dicts(data, copy.deepcopy(spec.case))
-    return _case_dump(case_from_dict(data, base_dir=base_dir))
+    case = case_from_dict(data, base_dir=base_dir)
+    if case.mode != "stationary":  # before any axis is checked or anything computed
+        raise CaseError("case.mode", case.mode, f'"stationary": {_MODE_HINT}')
+    return _case_dump(case)
 
 
 def _load_base(base: str, base_dir: Path) -> dict[str, Any]:
@@ -724,6 +735,8 @@ def _resolve_axes(spec: SweepFile, base: dict[str, Any], base_dir: Path) -> tupl
                 "the axes apply, so this axis would change nothing; sweep the fields the "
                 f"presets differ in ({_VARIABLE_FIELDS}), or run one sweep per preset",
             )
+        if ax.field.split(".")[0] in _MODE_FIELDS:
+            raise CaseError(f"{where}.field", ax.field, f"a stationary case field: {_MODE_HINT}")
         if ax.field.split(".")[0] in _FIXED_PREFIXES:
             raise CaseError(
                 f"{where}.field", ax.field, "frequency.*, output.* and title cannot vary (one grid)"
