@@ -246,25 +246,38 @@ def track_receptances(
             out[i] = track.receptance(f, x, x)
     omega = 2.0 * np.pi * f
     for x_d, members in stacks.items():
-        beta4, pad, scale = [], [], []
-        for i in members:
+        n_points = len(members) * f.size
+        b4 = np.empty(n_points, dtype=np.complex128)
+        k = np.empty(n_points, dtype=np.complex128)
+        sc = np.empty(n_points, dtype=np.complex128)
+        for row, i in enumerate(members):
             track = tracks[i]
             track.check_frequencies(f)
             d, ei = track.sleeper_spacing, _complex_ei(track)
+            rows = slice(row * f.size, (row + 1) * f.size)
             # the wave solver's expressions, operation for operation
-            beta4.append(track.rail.mass_per_length * omega**2 * d**4 / ei)
-            pad.append(track.support_stiffness(f) * d**3 / ei)
-            scale.append(np.full(f.size, d**3 / ei))
-        b4, k, sc = (np.concatenate(v).astype(np.complex128) for v in (beta4, pad, scale))
+            b4[rows] = track.rail.mass_per_length * omega**2 * d**4 / ei
+            k[rows] = track.support_stiffness(f) * d**3 / ei
+            sc[rows] = d**3 / ei
         points = np.tile(f, len(members))
         x = np.array(x_d)
-        fast = use_compiled(points.size) if compiled is None else compiled
-        rec = np.empty((points.size, n_w, n_w), dtype=np.complex128)
-        for start in range(0, points.size, FREQUENCY_BLOCK):
+        fast = use_compiled(n_points) if compiled is None else compiled
+        # each block scaled straight into its place (a view of `out` where the members are
+        # its consecutive tracks, as when every track is on the stacked kernel)
+        consecutive = members == list(range(members[0], members[0] + len(members)))
+        whole = slice(members[0], members[0] + len(members))
+        rec = (
+            out[whole].reshape(n_points, n_w, n_w)
+            if consecutive
+            else np.empty((n_points, n_w, n_w), dtype=np.complex128)
+        )
+        for start in range(0, n_points, FREQUENCY_BLOCK):
             sl = slice(start, start + FREQUENCY_BLOCK)
-            rec[sl], condition = _dimensionless(b4[sl], k[sl], x, fast)
+            block, condition = _dimensionless(b4[sl], k[sl], x, fast)
+            np.multiply(block, sc[sl, None, None], out=rec[sl])
             warn_if_ill_conditioned(points[sl], condition)
-        out[members] = (rec * sc[:, None, None]).reshape(len(members), f.size, n_w, n_w)
+        if not consecutive:
+            out[members] = rec.reshape(len(members), f.size, n_w, n_w)
     return out
 
 
