@@ -20,6 +20,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.coupled_kernel import coupled_points
+from railvib.coupled_kernel import kernel as coupled_kernel
 from railvib.errors import CaseError
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
@@ -36,6 +38,7 @@ __all__ = [
     "FREQUENCY_BLOCK_MANY_WHEELS",
     "CoupledFRF",
     "CoupledSystem",
+    "compiled_solve",
     "coupled_response",
     "track_receptances",
 ]
@@ -157,6 +160,7 @@ class CoupledSystem:
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
         # one case's run uses the compiled kernel only where this process has loaded it
         compiled = use_compiled(f.size, load=False)
+        fast_solve = compiled and compiled_solve(f.size, x.size, True)
         extra = np.empty(0) if observe is None else np.atleast_1d(np.asarray(observe, dtype=float))
         x_obs = np.concatenate([x, extra])  # the wheels first: their receptance as without
         for start in range(0, max(f.size, 1), step):
@@ -168,9 +172,16 @@ class CoupledSystem:
                 rec_obs = self.track.receptance(fb, x, x_obs)
             rec = np.ascontiguousarray(rec_obs[:, : x.size]) if extra.size else rec_obs
             v = excitation_vector(fb, delays)
-            u_v, force, rail = coupled_response(
-                self.vehicle.condensed_to_wheels(fb), rec, self.contact_stiffness, v[..., None]
-            )
+            cond = self.vehicle.condensed_to_wheels(fb)
+            if fast_solve:
+                one = np.zeros(1, dtype=np.int64)
+                u_v, force, rail = coupled_points(
+                    rec[None], one, cond.stiffness[None], cond.recovery[None], one,
+                    np.array([self.contact_stiffness]), v[None], one,
+                )  # fmt: skip
+                u_v, force, rail = u_v[0][..., None], force[0][..., None], rail[0][..., None]
+            else:
+                u_v, force, rail = coupled_response(cond, rec, self.contact_stiffness, v[..., None])
             observed = None
             if observe is not None:
                 observed = np.einsum("fow,fw->fo", rec_obs[:, x.size :], force[..., 0])
@@ -187,6 +198,31 @@ class CoupledSystem:
                     rail_observed=observed,
                 ),
             )
+
+
+def compiled_solve(n_points: int, n_wheels: int, compiled: bool | None = None) -> bool:
+    """Whether a coupled solve of `n_points` points runs on :mod:`railvib.coupled_kernel`.
+
+    Parameters
+    ----------
+    n_points : int
+        (case, frequency) points of the solve.
+    n_wheels : int
+        Wheels of the vehicle (above :data:`DENSE_WHEELS` the solve stays on LAPACK).
+    compiled : bool, optional
+        Whether compiled kernels are wanted; default: where the compiled wave kernel is
+        loaded in this process and serves a stack this size
+        (:func:`railvib.track.compiled.use_compiled`, never loading it).
+
+    Returns
+    -------
+    bool
+        True where numba is installed and the solve is wanted compiled.
+    """
+    if n_wheels > DENSE_WHEELS:
+        return False
+    wanted = use_compiled(n_points, load=False) if compiled is None else compiled
+    return wanted and coupled_kernel() is not None
 
 
 def _stackable(track: PeriodicTrack) -> bool:
