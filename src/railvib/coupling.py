@@ -307,11 +307,25 @@ def track_receptances(
             if consecutive
             else np.empty((n_points, n_w, n_w), dtype=np.complex128)
         )
+        condition = np.empty(n_points)
+        left: list[NDArray[np.intp]] = []  # points the compiled kernel leaves to NumPy
         for start in range(0, n_points, FREQUENCY_BLOCK):
             sl = slice(start, start + FREQUENCY_BLOCK)
-            block, condition = _dimensionless(b4[sl], k[sl], x, fast)
+            if fast:
+                block, condition[sl], bad = compiled_receptance(b4[sl], k[sl], x, x)
+                left.append(start + np.flatnonzero(bad))
+            else:
+                block, condition[sl] = _dimensionless(b4[sl], k[sl], x, False)
             np.multiply(block, sc[sl, None, None], out=rec[sl])
-            warn_if_ill_conditioned(points[sl], condition)
+        # those of every block in one NumPy call (a call's cost is mostly its fixed part)
+        bad_points = np.concatenate(left) if left else np.empty(0, dtype=np.intp)
+        for start in range(0, bad_points.size, FREQUENCY_BLOCK):
+            idx = bad_points[start : start + FREQUENCY_BLOCK]
+            block, condition[idx] = _dimensionless(b4[idx], k[idx], x, False)
+            rec[idx] = block * sc[idx, None, None]
+        for start in range(0, n_points, FREQUENCY_BLOCK):
+            sl = slice(start, start + FREQUENCY_BLOCK)
+            warn_if_ill_conditioned(points[sl], condition[sl])
         if not consecutive:
             out[members] = rec.reshape(len(members), f.size, n_w, n_w)
     return out
