@@ -20,6 +20,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.coupled_kernel import coupled_points
+from railvib.coupled_kernel import kernel as coupled_kernel
 from railvib.errors import CaseError
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
@@ -36,6 +38,7 @@ __all__ = [
     "FREQUENCY_BLOCK_MANY_WHEELS",
     "CoupledFRF",
     "CoupledSystem",
+    "compiled_solve",
     "coupled_response",
     "track_receptances",
 ]
@@ -157,6 +160,7 @@ class CoupledSystem:
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
         # one case's run uses the compiled kernel only where this process has loaded it
         compiled = use_compiled(f.size, load=False)
+        fast_solve = compiled and compiled_solve(f.size, x.size, True)
         extra = np.empty(0) if observe is None else np.atleast_1d(np.asarray(observe, dtype=float))
         x_obs = np.concatenate([x, extra])  # the wheels first: their receptance as without
         for start in range(0, max(f.size, 1), step):
@@ -168,9 +172,16 @@ class CoupledSystem:
                 rec_obs = self.track.receptance(fb, x, x_obs)
             rec = np.ascontiguousarray(rec_obs[:, : x.size]) if extra.size else rec_obs
             v = excitation_vector(fb, delays)
-            u_v, force, rail = coupled_response(
-                self.vehicle.condensed_to_wheels(fb), rec, self.contact_stiffness, v[..., None]
-            )
+            cond = self.vehicle.condensed_to_wheels(fb)
+            if fast_solve:
+                one = np.zeros(1, dtype=np.int64)
+                u_v, force, rail = coupled_points(
+                    rec[None], one, cond.stiffness[None], cond.recovery[None], one,
+                    np.array([self.contact_stiffness]), v[None], one,
+                )  # fmt: skip
+                u_v, force, rail = u_v[0][..., None], force[0][..., None], rail[0][..., None]
+            else:
+                u_v, force, rail = coupled_response(cond, rec, self.contact_stiffness, v[..., None])
             observed = None
             if observe is not None:
                 observed = np.einsum("fow,fw->fo", rec_obs[:, x.size :], force[..., 0])
@@ -187,6 +198,31 @@ class CoupledSystem:
                     rail_observed=observed,
                 ),
             )
+
+
+def compiled_solve(n_points: int, n_wheels: int, compiled: bool | None = None) -> bool:
+    """Whether a coupled solve of `n_points` points runs on :mod:`railvib.coupled_kernel`.
+
+    Parameters
+    ----------
+    n_points : int
+        (case, frequency) points of the solve.
+    n_wheels : int
+        Wheels of the vehicle (above :data:`DENSE_WHEELS` the solve stays on LAPACK).
+    compiled : bool, optional
+        Whether compiled kernels are wanted; default: where the compiled wave kernel is
+        loaded in this process and serves a stack this size
+        (:func:`railvib.track.compiled.use_compiled`, never loading it).
+
+    Returns
+    -------
+    bool
+        True where numba is installed and the solve is wanted compiled.
+    """
+    if n_wheels > DENSE_WHEELS:
+        return False
+    wanted = use_compiled(n_points, load=False) if compiled is None else compiled
+    return wanted and coupled_kernel() is not None
 
 
 def _stackable(track: PeriodicTrack) -> bool:
@@ -246,25 +282,52 @@ def track_receptances(
             out[i] = track.receptance(f, x, x)
     omega = 2.0 * np.pi * f
     for x_d, members in stacks.items():
-        beta4, pad, scale = [], [], []
-        for i in members:
+        n_points = len(members) * f.size
+        b4 = np.empty(n_points, dtype=np.complex128)
+        k = np.empty(n_points, dtype=np.complex128)
+        sc = np.empty(n_points, dtype=np.complex128)
+        for row, i in enumerate(members):
             track = tracks[i]
             track.check_frequencies(f)
             d, ei = track.sleeper_spacing, _complex_ei(track)
+            rows = slice(row * f.size, (row + 1) * f.size)
             # the wave solver's expressions, operation for operation
-            beta4.append(track.rail.mass_per_length * omega**2 * d**4 / ei)
-            pad.append(track.support_stiffness(f) * d**3 / ei)
-            scale.append(np.full(f.size, d**3 / ei))
-        b4, k, sc = (np.concatenate(v).astype(np.complex128) for v in (beta4, pad, scale))
+            b4[rows] = track.rail.mass_per_length * omega**2 * d**4 / ei
+            k[rows] = track.support_stiffness(f) * d**3 / ei
+            sc[rows] = d**3 / ei
         points = np.tile(f, len(members))
         x = np.array(x_d)
-        fast = use_compiled(points.size) if compiled is None else compiled
-        rec = np.empty((points.size, n_w, n_w), dtype=np.complex128)
-        for start in range(0, points.size, FREQUENCY_BLOCK):
+        fast = use_compiled(n_points) if compiled is None else compiled
+        # each block scaled straight into its place (a view of `out` where the members are
+        # its consecutive tracks, as when every track is on the stacked kernel)
+        consecutive = members == list(range(members[0], members[0] + len(members)))
+        whole = slice(members[0], members[0] + len(members))
+        rec = (
+            out[whole].reshape(n_points, n_w, n_w)
+            if consecutive
+            else np.empty((n_points, n_w, n_w), dtype=np.complex128)
+        )
+        condition = np.empty(n_points)
+        left: list[NDArray[np.intp]] = []  # points the compiled kernel leaves to NumPy
+        for start in range(0, n_points, FREQUENCY_BLOCK):
             sl = slice(start, start + FREQUENCY_BLOCK)
-            rec[sl], condition = _dimensionless(b4[sl], k[sl], x, fast)
-            warn_if_ill_conditioned(points[sl], condition)
-        out[members] = (rec * sc[:, None, None]).reshape(len(members), f.size, n_w, n_w)
+            if fast:
+                block, condition[sl], bad = compiled_receptance(b4[sl], k[sl], x, x)
+                left.append(start + np.flatnonzero(bad))
+            else:
+                block, condition[sl] = _dimensionless(b4[sl], k[sl], x, False)
+            np.multiply(block, sc[sl, None, None], out=rec[sl])
+        # those of every block in one NumPy call (a call's cost is mostly its fixed part)
+        bad_points = np.concatenate(left) if left else np.empty(0, dtype=np.intp)
+        for start in range(0, bad_points.size, FREQUENCY_BLOCK):
+            idx = bad_points[start : start + FREQUENCY_BLOCK]
+            block, condition[idx] = _dimensionless(b4[idx], k[idx], x, False)
+            rec[idx] = block * sc[idx, None, None]
+        for start in range(0, n_points, FREQUENCY_BLOCK):
+            sl = slice(start, start + FREQUENCY_BLOCK)
+            warn_if_ill_conditioned(points[sl], condition[sl])
+        if not consecutive:
+            out[members] = rec.reshape(len(members), f.size, n_w, n_w)
     return out
 
 

@@ -39,6 +39,7 @@ LAYERS = {
     "track": 3,
     "vehicle": 3,
     "coupling": 4,
+    "coupled_kernel": 1,
     "presets": 5,
     "results": 5,
     "outputs": 5,
@@ -74,7 +75,8 @@ LAZY_LIBRARIES = {
     "zarr": "a sweep's Zarr store, written chunk by chunk, only when assembling one",
     "cupy": "stacked kernels on a GPU, only when backend='cupy' is asked for (railvib.stack)",
     "jax": "stacked kernels on JAX, only when backend='jax' is asked for (railvib.stack)",
-    "numba": "the compiled wave kernel, only on a large stack (railvib.track.compiled)",
+    "numba": "the compiled wave and coupled kernels, only on a large stack (railvib.track.compiled,"
+    " railvib.coupled_kernel)",
     "plotly": "the plotly.js text inlined in the reproduce report only (railvib.reproduce.report)",
     "bokeh": "the live explorer only (railvib.explore, the optional extra 'explore')",
 }

@@ -12,7 +12,9 @@ in cache-sized blocks (``docs/design/0006-stacked-batches.md``):
   once; tracks the kernel does not cover (a Timoshenko rail) use their own solver;
 * each distinct vehicle is condensed once on the frequencies;
 * the coupled 4x4 solve runs on entry arrays ``(n_case, n_freq)``, each case with its
-  own vehicle, contact stiffness and speed's excitation.
+  own vehicle, contact stiffness and speed's excitation; where the compiled wave kernel
+  is loaded, on the compiled point kernel instead (:mod:`railvib.coupled_kernel`), which
+  writes every response straight into its result array.
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem, track_receptances
+from railvib.coupled_kernel import coupled_points
+from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem, compiled_solve, track_receptances
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
@@ -106,13 +109,26 @@ def frf_case_stack(
         else systems[i].vehicle.condensed_to_wheels(f)
         for i in vehicle_first
     ]
-    cond = _stacked_condensations(conds)
     contact = np.array([s.contact_stiffness for s in systems])
     delays = np.stack([s.vehicle.wheel_offsets / s.speed for s in systems])  # (n_case, n_w)
     # one excitation per distinct delays (speed and wheel offsets), picked per block
     delays, delay_of = np.unique(delays, axis=0, return_inverse=True)
     delay_of = delay_of.reshape(-1)
     excitation = np.exp(-2j * np.pi * f[None, :, None] * delays[:, None, :])
+    wheels = systems[0].vehicle.wheel_names
+    if compiled_solve(n_case * f.size, per_track.shape[-1], compiled):
+        parts = coupled_points(
+            per_track,
+            track_of,
+            np.stack([c.stiffness for c in conds]),
+            np.stack([c.recovery for c in conds]),
+            vehicle_of,
+            contact,
+            excitation,
+            delay_of,
+        )
+        return FRF(f, parts[0], parts[2], parts[1], dofs, wheels=wheels)
+    cond = _stacked_condensations(conds)
     step = max(1, FREQUENCY_BLOCK // f.size)  # cases per cache-sized block
     n_w = delays.shape[1]
     u_v = np.empty((n_case, f.size, len(dofs)), dtype=np.complex128)
@@ -133,7 +149,7 @@ def frf_case_stack(
         for whole, entries in zip((u_v, rail, force), parts, strict=True):
             for i, e in enumerate(entries):  # each entry written once, into its place
                 whole[blk, :, i] = e
-    return FRF(f, u_v, rail, force, dofs, wheels=systems[0].vehicle.wheel_names)
+    return FRF(f, u_v, rail, force, dofs, wheels=wheels)
 
 
 def frf_pad_stack(

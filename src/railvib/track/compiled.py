@@ -19,6 +19,7 @@ Elsewhere, and with ``RAILVIB_COMPILED=0``, everything runs on NumPy.
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from typing import Any
@@ -152,12 +153,9 @@ def compiled_receptance(
     bad : numpy.ndarray of bool
         ``(N,)``: points left to the NumPy kernel.
     """
-    ref_load, xi = _nearest_sleeper(x_load)
-    ref_obs, eta = _nearest_sleeper(x_obs)
-    xi_u, load_u = np.unique(_distinct(xi), return_inverse=True)
-    eta_u, obs_u = np.unique(_distinct(eta), return_inverse=True)
-    side = (x_obs[:, None] < x_load[None, :]).astype(np.int64)  # 0: right-going waves
-    exponents, power = np.unique(np.abs(ref_obs[:, None] - ref_load[None, :]), return_inverse=True)
+    geometry = _geometry(
+        tuple(np.asarray(x_load, dtype=float)), tuple(np.asarray(x_obs, dtype=float))
+    )
     n = beta4.shape[0]
     out = np.empty((n, x_obs.size, x_load.size), dtype=np.complex128)
     condition = np.empty(n)
@@ -166,13 +164,7 @@ def compiled_receptance(
     run(
         np.ascontiguousarray(beta4, dtype=np.complex128),
         np.ascontiguousarray(pad, dtype=np.complex128),
-        xi_u.astype(float),
-        load_u.ravel().astype(np.int64),
-        eta_u.astype(float),
-        obs_u.ravel().astype(np.int64),
-        side,
-        power.reshape(side.shape).astype(np.int64),
-        exponents.astype(np.int64),
+        *geometry,
         _INV_FACTORIAL,
         ENERGY_FLOW_TOLERANCE,
         WEAK_CROSS_PRODUCT,
@@ -184,9 +176,47 @@ def compiled_receptance(
     return out, condition, bad
 
 
+@functools.lru_cache(maxsize=64)
+def _geometry(x_load: tuple[float, ...], x_obs: tuple[float, ...]) -> tuple[NDArray[Any], ...]:
+    """The kernel's index tables for loads at `x_load` seen at `x_obs` (``x / d``).
+
+    Kept per geometry: every block of a run or a sweep has the same few (about 80 us of
+    NumPy calls each time otherwise). Returns ``x_pow, series, xi_u, load_u, eta_u, obs_u,
+    side, power, exponents`` as :func:`_points` takes them (read only).
+    """
+    load, obs = np.array(x_load), np.array(x_obs)
+    ref_load, xi = _nearest_sleeper(load)
+    ref_obs, eta = _nearest_sleeper(obs)
+    xi_u, load_u = np.unique(_distinct(xi), return_inverse=True)
+    eta_u, obs_u = np.unique(_distinct(eta), return_inverse=True)
+    # the Krylov functions at each distinct |x| (the half bay's 1/2 among them) once a point:
+    # the loads' and the observation points' coordinates are mostly the same few values
+    x_abs, series = np.unique(
+        np.concatenate([[0.5], np.abs(xi_u), np.abs(eta_u)]), return_inverse=True
+    )
+    side = (obs[:, None] < load[None, :]).astype(np.int64)  # 0: right-going waves
+    exponents, power = np.unique(np.abs(ref_obs[:, None] - ref_load[None, :]), return_inverse=True)
+    tables = (
+        np.stack([x_abs, x_abs**2, x_abs**3, x_abs**4], axis=1),
+        series.ravel().astype(np.int64),
+        xi_u.astype(float),
+        load_u.ravel().astype(np.int64),
+        eta_u.astype(float),
+        obs_u.ravel().astype(np.int64),
+        side,
+        power.reshape(side.shape).astype(np.int64),
+        exponents.astype(np.int64),
+    )
+    for table in tables:
+        table.flags.writeable = False
+    return tables
+
+
 def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
     beta4: Any,
     pad: Any,
+    x_pow: Any,
+    series: Any,
     xi_u: Any,
     load_u: Any,
     eta_u: Any,
@@ -202,18 +232,23 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
     condition: Any,
     bad: Any,
 ) -> None:
-    """The kernel: each point's waves, matching inverse and receptance (see module doc)."""
+    """The kernel: each point's waves, matching inverse and receptance (see module doc).
+
+    `x_pow` holds ``|x|, x^2, x^3, x^4`` of each distinct local coordinate (row 0 and the
+    entries of `series` say which row: first the half bay, then the loads' `xi_u`, then
+    the observation points' `eta_u`); their Krylov functions are summed once a point.
+    """
     mirror = np.array([1.0, -1.0, 1.0, -1.0])
     n_fact = inv_fact.shape[0]
+    n_x = x_pow.shape[0]
+    krylov = np.empty((n_x, 4), dtype=np.complex128)  # s_j(|x|), j = 0..3
     s = np.empty(4, dtype=np.complex128)
     half = np.empty((4, 4), dtype=np.complex128)
     m = np.empty((4, 4), dtype=np.complex128)
-    minor = np.empty(6, dtype=np.complex128)
     vec = np.empty((2, 4), dtype=np.complex128)
     cand = np.empty((2, 4), dtype=np.complex128)
     right = np.empty((4, 2), dtype=np.complex128)
     left = np.empty((4, 2), dtype=np.complex128)
-    mat = np.empty((4, 4), dtype=np.complex128)
     u = np.empty((4, 4), dtype=np.complex128)
     low = np.zeros((4, 4), dtype=np.complex128)
     linv = np.zeros((4, 4), dtype=np.complex128)
@@ -230,12 +265,12 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
     n_pow = exponents.shape[0]
     mu_pow = np.empty((n_pow, 2), dtype=np.complex128)
     pivot2 = pivot_threshold**2  # magnitudes compared squared: no hypot
-    pairs = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
     for p in range(beta4.shape[0]):
         b = beta4[p]
         k = pad[p]
         ab = math.sqrt(b.real * b.real + b.imag * b.imag)
-        terms = max(6, math.ceil((2.72 * ab**0.25 * 1.0 + 34.0) / 4.0))
+        root4 = ab**0.25  # |beta|: the Krylov series' term count at each x
+        terms = max(6, math.ceil((2.72 * root4 * 1.0 + 34.0) / 4.0))
         if 4 * terms + 3 >= n_fact:
             bad[p] = True
             continue
@@ -261,9 +296,9 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
         else:
             z = b**0.25
             cz, chz, sz, shz = np.cos(z), np.cosh(z), np.sin(z), np.sinh(z)
-            c2m2 = 4.0 * cz * chz + k * (chz * sz - cz * shz) / z**3
+            c2m2 = 4.0 * cz * chz + k * (chz * sz - cz * shz) / (z * z * z)
         # -- propagation constants (_propagation_constants)
-        disc = np.sqrt(c1**2 - 4.0 * c2m2)
+        disc = np.sqrt(c1 * c1 - 4.0 * c2m2)
         if (c1.conjugate() * disc).real < 0:
             disc = -disc
         lam_big = 0.5 * (c1 + disc)
@@ -277,16 +312,25 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
             large = 0.5 * (lam + root)
             mu_small[w] = 1.0 / large
             mu_big[w] = large
+        # -- the Krylov functions at each local coordinate, the half bay's first
+        for q in range(n_x):
+            x = x_pow[q, 0]
+            if x == 0.0:  # the series' exact value: s_0 = 1, the others 0
+                krylov[q, 0], krylov[q, 1], krylov[q, 2], krylov[q, 3] = 1.0, 0.0, 0.0, 0.0
+                continue
+            tb = max(6, math.ceil((2.72 * root4 * x + 34.0) / 4.0))
+            zeta = b * x_pow[q, 3]
+            a0 = a1 = a2 = a3 = 0j
+            for t in range(tb - 1, -1, -1):
+                a0 = a0 * zeta + inv_fact[4 * t]
+                a1 = a1 * zeta + inv_fact[4 * t + 1]
+                a2 = a2 * zeta + inv_fact[4 * t + 2]
+                a3 = a3 * zeta + inv_fact[4 * t + 3]
+            krylov[q, 0], krylov[q, 1] = a0, a1 * x
+            krylov[q, 2], krylov[q, 3] = a2 * x_pow[q, 1], a3 * x_pow[q, 2]
         # -- half-bay matrix B(1/2)
-        th = max(6, math.ceil((2.72 * ab**0.25 * 0.5 + 34.0) / 4.0))
-        zeta = b * 0.5**4
-        a0 = a1 = a2 = a3 = 0j
-        for t in range(th - 1, -1, -1):
-            a0 = a0 * zeta + inv_fact[4 * t]
-            a1 = a1 * zeta + inv_fact[4 * t + 1]
-            a2 = a2 * zeta + inv_fact[4 * t + 2]
-            a3 = a3 * zeta + inv_fact[4 * t + 3]
-        s[0], s[1], s[2], s[3] = a0, a1 * 0.5, a2 * 0.5**2, a3 * 0.5**3
+        for c in range(4):
+            s[c] = krylov[series[0], c]
         for r in range(4):
             for c in range(4):
                 half[r, c] = s[c - r] if c >= r else b * s[c - r + 4]
@@ -307,19 +351,16 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
                     m[r, c] = m[r, c] * scale
             for which in range(2):
                 ra, rb, rc = (1, 2, 3) if which == 0 else (2, 0, 1)
-                for q in range(6):
-                    i, j = pairs[q]
-                    minor[q] = m[rb, i] * m[rc, j] - m[rb, j] * m[rc, i]
-                for i in range(4):
-                    if i == 0:
-                        det = m[ra, 1] * minor[5] - m[ra, 2] * minor[4] + m[ra, 3] * minor[3]
-                    elif i == 1:
-                        det = m[ra, 0] * minor[5] - m[ra, 2] * minor[2] + m[ra, 3] * minor[1]
-                    elif i == 2:
-                        det = m[ra, 0] * minor[4] - m[ra, 1] * minor[2] + m[ra, 3] * minor[0]
-                    else:
-                        det = m[ra, 0] * minor[3] - m[ra, 1] * minor[1] + m[ra, 2] * minor[0]
-                    cand[which, i] = det if i % 2 == 0 else -det
+                m01 = m[rb, 0] * m[rc, 1] - m[rb, 1] * m[rc, 0]
+                m02 = m[rb, 0] * m[rc, 2] - m[rb, 2] * m[rc, 0]
+                m03 = m[rb, 0] * m[rc, 3] - m[rb, 3] * m[rc, 0]
+                m12 = m[rb, 1] * m[rc, 2] - m[rb, 2] * m[rc, 1]
+                m13 = m[rb, 1] * m[rc, 3] - m[rb, 3] * m[rc, 1]
+                m23 = m[rb, 2] * m[rc, 3] - m[rb, 3] * m[rc, 2]
+                cand[which, 0] = m[ra, 1] * m23 - m[ra, 2] * m13 + m[ra, 3] * m12
+                cand[which, 1] = -(m[ra, 0] * m23 - m[ra, 2] * m03 + m[ra, 3] * m02)
+                cand[which, 2] = m[ra, 0] * m13 - m[ra, 1] * m03 + m[ra, 3] * m01
+                cand[which, 3] = -(m[ra, 0] * m12 - m[ra, 1] * m02 + m[ra, 2] * m01)
             n1 = 0.0
             n2 = 0.0
             for i in range(4):
@@ -330,8 +371,10 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
             nb = n2 if n2 > n1 else n1
             if nb < weak_cross:
                 weak = True
+                break
+            inv_nb = 1.0 / nb  # a real scale: multiplied, not a complex division
             for i in range(4):
-                vec[w, i] = cand[best, i] / nb
+                vec[w, i] = cand[best, i] * inv_nb
         if weak:
             bad[p] = True
             continue
@@ -350,27 +393,23 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
         # -- wave matching [R, -L], rows equilibrated, inverted from its LU factors
         big_m = 0.0
         for i in range(4):
-            mat[i, 0], mat[i, 1] = right[i, 0], right[i, 1]
-            mat[i, 2], mat[i, 3] = -left[i, 0], -left[i, 1]
+            u[i, 0], u[i, 1] = right[i, 0], right[i, 1]
+            u[i, 2], u[i, 3] = -left[i, 0], -left[i, 1]
             row_max = 0.0
             for j in range(4):
-                row_max = max(row_max, mat[i, j].real ** 2 + mat[i, j].imag ** 2)
+                row_max = max(row_max, u[i, j].real ** 2 + u[i, j].imag ** 2)
             rows[i] = 1.0 / math.sqrt(row_max)
             for j in range(4):
-                mat[i, j] = mat[i, j] * rows[i]
-                big_m = max(big_m, mat[i, j].real ** 2 + mat[i, j].imag ** 2)
-        for i in range(4):
-            for j in range(4):
-                u[i, j] = mat[i, j]
-        weak = False
+                u[i, j] = u[i, j] * rows[i]
+                big_m = max(big_m, u[i, j].real ** 2 + u[i, j].imag ** 2)
         for kk in range(4):
             size = u[kk, kk].real ** 2 + u[kk, kk].imag ** 2
             for i in range(kk + 1, 4):
                 if size < pivot2 * (u[i, kk].real ** 2 + u[i, kk].imag ** 2):
                     weak = True
-            inv_pivot = 1.0 / u[kk, kk]
+            uinv[kk, kk] = 1.0 / u[kk, kk]  # the pivot's inverse, once
             for i in range(kk + 1, 4):
-                low[i, kk] = u[i, kk] * inv_pivot
+                low[i, kk] = u[i, kk] * uinv[kk, kk]
                 for j in range(kk + 1, 4):
                     u[i, j] = u[i, j] - low[i, kk] * u[kk, j]
         if weak:
@@ -383,7 +422,6 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
                     acc = acc - low[i, kk] * linv[kk, j]
                 linv[i, j] = acc
         for j in range(4):
-            uinv[j, j] = 1.0 / u[j, j]
             for i in range(j - 1, -1, -1):
                 acc = u[i, i + 1] * uinv[i + 1, j]
                 for kk in range(i + 2, j + 1):
@@ -397,25 +435,14 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
                 for kk in range(start + 1, 4):
                     acc = acc + uinv[i, kk] * linv[kk, j]
                 big_inv = max(big_inv, acc.real**2 + acc.imag**2)
-                inv[i, j] = acc
+                inv[i, j] = acc * rows[j]
         condition[p] = 4.0 * math.sqrt(big_m * big_inv)
-        for i in range(4):
-            for j in range(4):
-                inv[i, j] = inv[i, j] * rows[j]
         # -- wave amplitudes of a load at each local coordinate (receptance_entries)
         for q in range(n_xi):
-            x = abs(xi_u[q])
-            tb = max(6, math.ceil((2.72 * ab**0.25 * x + 34.0) / 4.0))
-            zeta = b * x**4
-            a0 = a1 = a2 = a3 = 0j
-            for t in range(tb - 1, -1, -1):
-                a0 = a0 * zeta + inv_fact[4 * t]
-                a1 = a1 * zeta + inv_fact[4 * t + 1]
-                a2 = a2 * zeta + inv_fact[4 * t + 2]
-                a3 = a3 * zeta + inv_fact[4 * t + 3]
-            sg = -1.0 if -xi_u[q] < 0 else 1.0  # s_j(-u) = (-1)^j s_j(u)
-            rhs[0], rhs[1] = sg * (a3 * x**3), a2 * x**2
-            rhs[2], rhs[3] = sg * (a1 * x), a0
+            row = series[1 + q]
+            sg = -1.0 if xi_u[q] > 0 else 1.0  # the field at -xi: s_j(-u) = (-1)^j s_j(u)
+            rhs[0], rhs[1] = sg * krylov[row, 3], krylov[row, 2]
+            rhs[2], rhs[3] = sg * krylov[row, 1], krylov[row, 0]
             if xi_u[q] < 0:
                 rhs[3] = rhs[3] - k * rhs[0]
             for r in range(4):
@@ -425,17 +452,10 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - one loop body the compiler fuses
                 amps[q, r] = acc
         # -- displacement of each wave at each observation coordinate
         for q in range(n_eta):
-            x = abs(eta_u[q])
-            tb = max(6, math.ceil((2.72 * ab**0.25 * x + 34.0) / 4.0))
-            zeta = b * x**4
-            a0 = a1 = a2 = a3 = 0j
-            for t in range(tb - 1, -1, -1):
-                a0 = a0 * zeta + inv_fact[4 * t]
-                a1 = a1 * zeta + inv_fact[4 * t + 1]
-                a2 = a2 * zeta + inv_fact[4 * t + 2]
-                a3 = a3 * zeta + inv_fact[4 * t + 3]
+            row = series[1 + n_xi + q]
             sg = -1.0 if eta_u[q] < 0 else 1.0
-            s[0], s[1], s[2], s[3] = a0, sg * (a1 * x), a2 * x**2, sg * (a3 * x**3)
+            s[0], s[1] = krylov[row, 0], sg * krylov[row, 1]
+            s[2], s[3] = krylov[row, 2], sg * krylov[row, 3]
             if eta_u[q] < 0:
                 s[0] = s[0] + k * s[3]
             for w in range(2):
