@@ -300,6 +300,7 @@ def test_plot_on_an_unfinished_sweep_says_rerun(tmp_path, capsys):
     assert "this sweep is unfinished (no sweep.zarr yet)" in _one_error_line(capsys)
 
 
+@pytest.mark.slow  # ~1.4 s: whole commands with their files, kept out of the fast suite
 def test_plot_accepts_comma_separated_and_repeated_options(sweep_folder, tmp_path):
     out = tmp_path / "p"
     args = ["-v", "peak,rms_20_100_hz", "-r", "wheelset2.bounce,rail@wheel1", "-r", "bogie1.bounce"]

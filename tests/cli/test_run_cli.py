@@ -19,6 +19,7 @@ def test_cli_prints_one_line_and_writes_nothing(tmp_path, capsys):
     assert not out.exists()
 
 
+@pytest.mark.slow  # ~2.4 s: whole commands with their files, kept out of the fast suite
 def test_cli_run_writes_dataset_summary_and_plots(tmp_path):
     case = tmp_path / "c.toml"
     case.write_text(

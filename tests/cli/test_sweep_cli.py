@@ -16,6 +16,7 @@ def _write(tmp_path, d, name="s.toml"):
     return path
 
 
+@pytest.mark.slow  # ~2.3 s: whole commands with their files, kept out of the fast suite
 def test_run_plot_csv_netcdf_then_resume(tmp_path, capsys):
     f = _write(tmp_path, small_sweep())
     out = tmp_path / "out"
@@ -57,6 +58,7 @@ def test_bad_sweep_file_one_line_exit_2(tmp_path, capsys):
     assert "Traceback" not in err
 
 
+@pytest.mark.slow  # ~1.0 s: whole commands with their files, kept out of the fast suite
 def test_plot_and_export_commands(tmp_path, capsys):
     out = tmp_path / "out"
     f = _write(tmp_path, small_sweep())

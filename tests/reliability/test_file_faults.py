@@ -85,6 +85,7 @@ def test_output_that_is_no_folder_is_one_line(tmp_path, capsys, command, where, 
     assert snapshot(tmp_path) == before
 
 
+@pytest.mark.slow  # ~1.2 s: whole commands with their files, kept out of the fast suite
 def test_unwritable_output_folder_is_one_line_and_keeps_the_earlier_set(tmp_path, run_a):
     out, before = run_a
     os.chmod(out, 0o555)

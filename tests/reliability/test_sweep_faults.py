@@ -288,6 +288,7 @@ def test_plot_of_a_folder_without_a_sweep_is_one_line(finished, kind, tmp_path, 
     assert not (tmp_path / "plots").exists()
 
 
+@pytest.mark.slow  # ~1.1 s: whole commands with their files, kept out of the fast suite
 def test_plot_of_a_store_with_missing_zarr_chunks_is_one_line_and_a_rerun_repairs_it(
     finished, sweep_file, tmp_path, capsys
 ):

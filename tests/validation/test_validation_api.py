@@ -150,6 +150,7 @@ def test_every_variable_has_real_units(tiny_result):
     assert units[labels.index("carbody.bounce")] == psd.units
 
 
+@pytest.mark.slow  # ~1.9 s: whole commands with their files, kept out of the fast suite
 def test_written_datasets_load_back_identical(tiny_result, tmp_path):
     write_validation(tiny_result, tmp_path, "tiny")
     mc = load_netcdf(tmp_path / "tiny_mc.nc")
@@ -163,6 +164,7 @@ def test_written_datasets_load_back_identical(tiny_result, tmp_path):
     assert not list(tmp_path.glob("*.part"))
 
 
+@pytest.mark.slow  # ~1.4 s: whole commands with their files, kept out of the fast suite
 def test_validate_to_folder_writes_exactly_the_listed_files(
     system, tiny_result, monkeypatch, tmp_path
 ):
@@ -173,6 +175,7 @@ def test_validate_to_folder_writes_exactly_the_listed_files(
     assert sorted(p.name for p in out.iterdir()) == sorted(validation_files("tiny"))
 
 
+@pytest.mark.slow  # ~1.8 s: whole commands with their files, kept out of the fast suite
 def test_a_failing_validation_leaves_the_earlier_set_and_the_users_files(
     system, tiny_result, monkeypatch, tmp_path
 ):
