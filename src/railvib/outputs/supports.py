@@ -102,6 +102,7 @@ def support_force_variables(
     track = system.track
     f = ds["frequency"].values
     s_r = ds["irregularity_psd"].values
+    per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
         contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
         try:
@@ -109,19 +110,14 @@ def support_force_variables(
         except NotImplementedError:  # a continuous foundation: no discrete supports
             return {}
         slab_layers = list(support.force)
-        per_slab_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
         psd = np.stack(
-            [
-                np.abs(support.force[name] / per_slab_rail) ** 2 * s_r[:, None]
-                for name in slab_layers
-            ],
+            [np.abs(support.force[name] / per_rail) ** 2 * s_r[:, None] for name in slab_layers],
             axis=-1,
         )  # (frequency, wheel, layer)
         return _variables(f, support.x, slab_layers, psd)
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
     if not gives_seat_forces(system, f):  # a track without seats modelled one by one
         return {}
-    per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     names: list[str] = []
     psd = np.empty((f.size, seats.size, 0))
     # block by block, so the temporaries are a block's whatever the grid
