@@ -23,6 +23,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from railvib.jit import numba_jit
+
 __all__ = ["coupled_points", "kernel"]
 
 _KERNEL: list[Any] = []
@@ -31,12 +33,8 @@ _KERNEL: list[Any] = []
 def kernel() -> Any:
     """The compiled point kernel (numba, cached on disk), or None where numba is not installed."""
     if not _KERNEL:
-        try:
-            import numba
-        except ImportError:
-            _KERNEL.append(None)
-        else:
-            _KERNEL.append(numba.njit(cache=True, nogil=True, error_model="numpy")(_points))
+        jit = numba_jit(error_model="numpy")
+        _KERNEL.append(None if jit is None else jit(_points))
     return _KERNEL[0]
 
 

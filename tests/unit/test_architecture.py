@@ -27,6 +27,7 @@ LAYERS = {
     "docstrings": 0,
     "labels": 0,
     "units": 0,
+    "jit": 0,
     "io": 1,
     "registry": 1,
     "response": 1,
@@ -75,8 +76,8 @@ LAZY_LIBRARIES = {
     "zarr": "a sweep's Zarr store, written chunk by chunk, only when assembling one",
     "cupy": "stacked kernels on a GPU, only when backend='cupy' is asked for (railvib.stack)",
     "jax": "stacked kernels on JAX, only when backend='jax' is asked for (railvib.stack)",
-    "numba": "the compiled wave and coupled kernels, only on a large stack (railvib.track.compiled,"
-    " railvib.coupled_kernel)",
+    "numba": "the compiled kernels, only on a large stack or when asked for (railvib.jit for"
+    " railvib.track.compiled, compiled_cells, moving_kernel and railvib.coupled_kernel)",
     "plotly": "the plotly.js text inlined in the reproduce report only (railvib.reproduce.report)",
     "bokeh": "the live explorer only (railvib.explore, the optional extra 'explore')",
 }

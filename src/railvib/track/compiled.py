@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from railvib.jit import numba_jit
 from railvib.track.stacked import (
     ENERGY_FLOW_TOLERANCE,
     WEAK_CROSS_PRODUCT,
@@ -113,12 +114,8 @@ def compile_kernel() -> bool:
 def _kernel() -> Any:
     """The compiled kernel (numba, cached on disk), or None where numba is not installed."""
     if not _KERNEL:
-        try:
-            import numba
-        except ImportError:
-            _KERNEL.append(None)
-        else:
-            _KERNEL.append(numba.njit(cache=True, nogil=True)(_points))
+        jit = numba_jit()
+        _KERNEL.append(None if jit is None else jit(_points))
     return _KERNEL[0]
 
 

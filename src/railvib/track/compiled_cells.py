@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from railvib.jit import numba_jit
 from railvib.track import compiled
 
 __all__ = [
@@ -70,12 +71,10 @@ def use_compiled_cells() -> bool:
 def cell_kernel() -> Any:
     """The compiled functions ``(waves, loaded, propagate)`` (numba, cached), or None."""
     if not _CELL_KERNEL:
-        try:
-            import numba
-        except ImportError:
+        jit = numba_jit()
+        if jit is None:
             _CELL_KERNEL.append(None)
         else:
-            jit = numba.njit(cache=True, nogil=True)
             space = globals()
             for name in _FUNCTIONS:  # compiled at first call: callees resolve to these
                 space[name] = jit(_PLAIN[name])

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from railvib.jit import numba_jit
 from railvib.track.beam import _SERIES_TERMS, _SERIES_WAVENUMBER2, _odd_divided_difference, _over
 from railvib.track.timoshenko import wavenumbers
 
@@ -126,12 +127,8 @@ def compiled_available() -> bool:
 def _kernel() -> Any:
     """The compiled node loop (numba, cached on disk), or None where numba is not installed."""
     if not _KERNEL:
-        try:
-            import numba
-        except ImportError:
-            _KERNEL.append(None)
-        else:
-            _KERNEL.append(numba.njit(cache=True, nogil=True, fastmath=_FASTMATH)(_panels))
+        jit = numba_jit(fastmath=_FASTMATH)
+        _KERNEL.append(None if jit is None else jit(_panels))
     return _KERNEL[0]
 
 
