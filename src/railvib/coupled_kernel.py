@@ -59,7 +59,7 @@ def fused_points(
     contact_stiffness: float,
     delays: NDArray[np.float64],
     run: Any = None,
-) -> tuple[NDArray[np.complex128], ...]:
+) -> tuple[NDArray[Any], ...]:
     """One case's vehicle condensation, coupled solve and body recovery, point by point.
 
     At each frequency the vehicle's dynamic stiffness is formed and its body DOFs
@@ -304,7 +304,7 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
     observed: Any,
     bad: Any,
 ) -> None:
-    """The fused kernel: each point's condensation, solve and recovery (see :func:`fused_points`)."""
+    """The fused kernel: each point's condensation, solve and recovery (:func:`fused_points`)."""
     n_freq, n_obs, n = receptance.shape
     n_slot, n_dof = base.shape[1], u_v.shape[1]
     d = np.empty(n_slot, dtype=np.complex128)
@@ -326,7 +326,8 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
         for k in range(n_slot):
             d[k] = complex(base[0, k] - omega2 * base[1, k], omega * base[2, k])
         for t in range(term_slot.shape[0]):
-            d[term_slot[t]] = d[term_slot[t]] + element_stiffness[q, term_element[t]] * term_factor[t]
+            k_e = element_stiffness[q, term_element[t]] * term_factor[t]
+            d[term_slot[t]] = d[term_slot[t]] + k_e
         # the body DOFs eliminated (the pivot test of the stacked elimination)
         weak = False
         for st in range(pivot_slot.shape[0]):

@@ -416,7 +416,7 @@ class Vehicle:
         m, c, k = self._matrices
         elim = self._elimination
         slots: dict[tuple[int, int], int] = {key: i for i, key in enumerate(elim.pattern)}
-        for p, nb in elim.steps:  # the fill-in, in the order the elimination makes it
+        for _, nb in elim.steps:  # the fill-in, in the order the elimination makes it
             for ia, a in enumerate(nb):
                 for b in nb[ia:]:
                     slots.setdefault(_key(a, b), len(slots))
@@ -431,7 +431,10 @@ class Vehicle:
             for key in elim.pattern
             if vec[key[0]] * vec[key[1]] != 0.0
         ]
-        nb_ptr, nb_dof, nb_slot, upd_ptr, upd = [0], [], [], [0], []
+        nb_ptr, upd_ptr = [0], [0]
+        nb_dof: list[int] = []
+        nb_slot: list[int] = []
+        upd: list[tuple[int, int, int]] = []
         for p, nb in elim.steps:
             first = len(nb_dof)
             nb_dof += list(nb)
