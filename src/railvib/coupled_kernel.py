@@ -132,6 +132,8 @@ def fused_points(
         program.update,
         program.wheel_dof,
         program.wheel_slot,
+        program.column_ptr,
+        program.column_wheel,
         program.pivot_threshold,
         u_v,
         force,
@@ -296,6 +298,8 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
     update: Any,
     wheel_dof: Any,
     wheel_slot: Any,
+    column_ptr: Any,
+    column_wheel: Any,
     threshold: float,
     u_v: Any,
     force: Any,
@@ -319,6 +323,7 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
     two_pi = 2.0 * np.pi
     minus_two_pi = -2.0 * np.pi
     threshold2 = threshold * threshold
+    full = column_wheel.shape[0] == n * n  # no structural zero in S (one car)
     for q in range(n_freq):
         # the dynamic stiffness's entries K - omega^2 M + i omega C, and the elements
         omega = two_pi * f[q]
@@ -358,8 +363,13 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
         for i in range(n):
             for j in range(n):
                 acc = h * s[i, j]
-                for m in range(n):
-                    acc = acc + r[i, m] * s[m, j]
+                if full:
+                    for m in range(n):
+                        acc = acc + r[i, m] * s[m, j]
+                else:
+                    for k in range(column_ptr[j], column_ptr[j + 1]):
+                        m = column_wheel[k]
+                        acc = acc + r[i, m] * s[m, j]
                 a[i, j] = acc
             a[i, i] = a[i, i] + 1.0
             phase = arg * delays[i]
@@ -390,9 +400,13 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
             x[k] = acc * inv_diag[k]
         # P = -S u_w, u_rail = R P and the further points, the bodies back-substituted
         for i in range(n):
-            acc = s[i, 0] * x[0]
-            for j in range(1, n):
-                acc = acc + s[i, j] * x[j]
+            acc = 0.0j
+            if full:
+                for j in range(n):
+                    acc = acc + s[i, j] * x[j]
+            else:
+                for k in range(column_ptr[i], column_ptr[i + 1]):
+                    acc = acc + s[i, column_wheel[k]] * x[column_wheel[k]]
             p[i] = -acc
             force[q, i] = -acc
         for i in range(n):

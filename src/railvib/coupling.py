@@ -160,7 +160,7 @@ class CoupledSystem:
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
         # one case's run uses the compiled kernel only where this process has loaded it
         compiled = use_compiled(f.size, load=False)
-        fast_solve = compiled and x.size <= DENSE_WHEELS and fused_kernel() is not None
+        fast_solve = compiled and fused_kernel() is not None
         extra = np.empty(0) if observe is None else np.atleast_1d(np.asarray(observe, dtype=float))
         x_obs = np.concatenate([x, extra])  # the wheels first: their receptance as without
         for start in range(0, max(f.size, 1), step):

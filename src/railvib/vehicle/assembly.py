@@ -462,6 +462,8 @@ class Vehicle:
             update=np.array(upd, dtype=np.int64).reshape(-1, 3),
             wheel_dof=np.array(wheels, dtype=np.int64),
             wheel_slot=wheel_slot,
+            column_ptr=np.concatenate([[0], np.cumsum((wheel_slot >= 0).sum(axis=0))]),
+            column_wheel=np.nonzero((wheel_slot >= 0).T)[1].astype(np.int64),
             pivot_threshold=PIVOT_THRESHOLD,
         )
 
@@ -606,6 +608,9 @@ class EliminationProgram:
     wheel_slot : numpy.ndarray
         ``(n_wheel, n_wheel)``: the slot of the condensed entry ``S[a, b]``, -1 where it is
         a structural zero (a train's cars).
+    column_ptr, column_wheel : numpy.ndarray
+        The wheels ``a`` of each column ``b`` whose ``S[a, b]`` is not a structural zero
+        (``S`` is symmetric: each row's too).
     pivot_threshold : float
         The pivot test of the stacked elimination (:data:`railvib.stack.PIVOT_THRESHOLD`):
         a point whose pivot is below this fraction of an entry of its row is flagged.
@@ -625,6 +630,8 @@ class EliminationProgram:
     update: NDArray[np.int64]
     wheel_dof: NDArray[np.int64]
     wheel_slot: NDArray[np.int64]
+    column_ptr: NDArray[np.int64]
+    column_wheel: NDArray[np.int64]
     pivot_threshold: float
 
 
