@@ -347,6 +347,11 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
                 ell[k] = d[nb_slot[k]] * inv
             for k in range(update_ptr[st], update_ptr[st + 1]):
                 d[update[k, 0]] = d[update[k, 0]] - ell[update[k, 1]] * d[update[k, 2]]
+        for i in range(n):  # the receptance in m/N, also where the caller solves the point
+            for j in range(n):
+                value = receptance[q, i, j] * scale
+                r[i, j] = value
+                rec[q, i, j] = value
         if weak:
             bad[q] = True
             continue
@@ -355,9 +360,6 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compile
                 slot = wheel_slot[i, j]
                 if slot >= 0:
                     s[i, j] = d[slot]
-                value = receptance[q, i, j] * scale
-                r[i, j] = value
-                rec[q, i, j] = value
         # (R + h I) S + I, and the input exp(-i 2 pi f t_j)
         arg = minus_two_pi * f[q]
         for i in range(n):
