@@ -12,6 +12,15 @@ partial pivoting: no point is left to LAPACK) and back-substituted in registers,
 responses go straight into their result arrays: no entry array of the stack is formed
 and no result is copied into place.
 
+One case's block (:meth:`railvib.coupling.CoupledSystem.frf_blocks`) goes further on
+:func:`fused_points`: the vehicle's condensation onto its wheels is executed point by
+point too, from the integer tables of its minimum-degree elimination
+(:attr:`railvib.vehicle.Vehicle.elimination_program`, any tree of bodies, a train's cars
+included), and the bodies are recovered by back-substitution through the elimination's
+multipliers, so neither ``S`` nor ``R_v`` is formed as an array; the receptance is scaled
+from the wave solver's dimensionless one and the wheels' inputs ``exp(-i omega t_j)`` are
+formed in the same pass.
+
 Loaded only where the compiled wave kernel is (:mod:`railvib.track.compiled` decides:
 a sweep's large stacks, a process that has loaded it); numba is imported on first use.
 """

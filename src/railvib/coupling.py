@@ -52,8 +52,9 @@ FREQUENCY_BLOCK = 4096
 #: receptance stack, 16 n^2 bytes a frequency, stays near the cache (16 MB for 32 wheels)
 FREQUENCY_BLOCK_MANY_WHEELS = 1024
 
-#: more wheels than this and the coupled solve works on dense stacks with LAPACK
-#: (:func:`_coupled_dense`): the stacked elimination's Python-level cost grows as n^3
+#: more wheels than this and the coupled solve on NumPy works on dense stacks with LAPACK
+#: (:func:`_coupled_dense`): the stacked elimination's Python-level cost grows as n^3 (the
+#: compiled fused kernel of one case takes any number)
 DENSE_WHEELS = 8
 
 #: the coupled responses (one container for every solver; kept under its old name)
@@ -151,6 +152,12 @@ class CoupledSystem:
         ------
         slice, FRF
             The block's indices into `f`, and its responses (with the receptance).
+
+        Notes
+        -----
+        Where this process has loaded the compiled wave kernel, each block's vehicle
+        condensation, coupled solve and body recovery run on one fused compiled kernel
+        (:func:`railvib.coupled_kernel.fused_points`); the NumPy path is the reference.
         """
         f = np.atleast_1d(np.asarray(f, dtype=float))
         many = len(self.vehicle.wheels) > DENSE_WHEELS
