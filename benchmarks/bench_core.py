@@ -45,11 +45,11 @@ import numpy as np  # noqa: E402
 
 import railvib  # noqa: E402
 from railvib.case import build_spectrum  # noqa: E402
-from railvib.coupled_kernel import coupled_points  # noqa: E402
+from railvib.coupled_kernel import fused_points  # noqa: E402
 from railvib.coupling import (  # noqa: E402
     FREQUENCY_BLOCK,
     _compiled_receptance,
-    compiled_solve,
+    _receptance_parts,
     coupled_response,
 )
 from railvib.outputs.supports import seat_positions  # noqa: E402
@@ -154,10 +154,22 @@ def breakdown(system, f, fast, repeat, total_time):
         ],
         repeat,
     )[0]
+    delays = wheel_delays(vehicle.wheel_offsets, system.speed)
+    if fast:  # as frf_blocks solves a block with the kernels loaded: one fused kernel
+        fused = [
+            (fb, vehicle.element_stiffness(fb), _receptance_parts(system.track, fb, x, x_obs))
+            for fb in blocks
+        ]
+        program, k_h = vehicle.elimination_program, system.contact_stiffness
+        parts["vehicle condensation, coupled solve and recovery (fused kernel)"] = timed(
+            lambda: [fused_points(program, fb, ke, r, s, k_h, delays) for fb, ke, (r, s) in fused],
+            repeat,
+        )[0]
+        report(parts, total_time)
+        return
     parts["vehicle condensation"] = timed(
         lambda: [vehicle.condensed_to_wheels(fb) for fb in blocks], repeat
     )[0]
-    delays = wheel_delays(vehicle.wheel_offsets, system.speed)
     inputs = [
         (
             vehicle.condensed_to_wheels(fb),
@@ -166,16 +178,15 @@ def breakdown(system, f, fast, repeat, total_time):
         )
         for fb in blocks
     ]
-    one = np.zeros(1, dtype=np.int64)
-    k_h = np.array([system.contact_stiffness])
+    k_h = system.contact_stiffness
+    parts["coupled solve"] = timed(
+        lambda: [coupled_response(c, r, k_h, v) for c, r, v in inputs], repeat
+    )[0]
+    report(parts, total_time)
 
-    def solve(c, r, v):  # as frf_blocks solves a block: compiled where the kernel is loaded
-        if fast and compiled_solve(r.shape[0], r.shape[-1], True):
-            s, rv = c.stiffness[None], c.recovery[None]
-            return coupled_points(r[None], one, s, rv, one, k_h, v[None, ..., 0], one)
-        return coupled_response(c, r, system.contact_stiffness, v)
 
-    parts["coupled solve"] = timed(lambda: [solve(c, r, v) for c, r, v in inputs], repeat)[0]
+def report(parts, total_time):
+    """Print the parts of a run and the rest of its time (CPU ms, share of the run)."""
     rest = max(total_time - sum(parts.values()), 0)
     print(
         "   breakdown (CPU, min of each): "

@@ -12,22 +12,35 @@ partial pivoting: no point is left to LAPACK) and back-substituted in registers,
 responses go straight into their result arrays: no entry array of the stack is formed
 and no result is copied into place.
 
+One case's block (:meth:`railvib.coupling.CoupledSystem.frf_blocks`) goes further on
+:func:`fused_points`: the vehicle's condensation onto its wheels is executed point by
+point too, from the integer tables of its minimum-degree elimination
+(:attr:`railvib.vehicle.Vehicle.elimination_program`, any tree of bodies, a train's cars
+included), and the bodies are recovered by back-substitution through the elimination's
+multipliers, so neither ``S`` nor ``R_v`` is formed as an array; the receptance is scaled
+from the wave solver's dimensionless one and the wheels' inputs ``exp(-i omega t_j)`` are
+formed in the same pass.
+
 Loaded only where the compiled wave kernel is (:mod:`railvib.track.compiled` decides:
 a sweep's large stacks, a process that has loaded it); numba is imported on first use.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from railvib.jit import numba_jit
 
-__all__ = ["coupled_points", "kernel"]
+if TYPE_CHECKING:  # the vehicle's layer is above this kernel's: the type only
+    from railvib.vehicle.assembly import EliminationProgram
+
+__all__ = ["coupled_points", "fused_kernel", "fused_points", "kernel"]
 
 _KERNEL: list[Any] = []
+_FUSED: list[Any] = []
 
 
 def kernel() -> Any:
@@ -36,6 +49,109 @@ def kernel() -> Any:
         jit = numba_jit(error_model="numpy")
         _KERNEL.append(None if jit is None else jit(_points))
     return _KERNEL[0]
+
+
+def fused_kernel() -> Any:
+    """The compiled fused kernel of :func:`fused_points`, or None where numba is not installed."""
+    if not _FUSED:
+        jit = numba_jit(error_model="numpy")
+        _FUSED.append(None if jit is None else jit(_fused))
+    return _FUSED[0]
+
+
+def fused_points(
+    program: EliminationProgram,
+    f: NDArray[np.float64],
+    element_stiffness: NDArray[np.complex128],
+    receptance: NDArray[np.complex128],
+    scale: complex,
+    contact_stiffness: float,
+    delays: NDArray[np.float64],
+    run: Any = None,
+) -> tuple[NDArray[Any], ...]:
+    """One case's vehicle condensation, coupled solve and body recovery, point by point.
+
+    At each frequency the vehicle's dynamic stiffness is formed and its body DOFs
+    eliminated by `program` (:attr:`railvib.vehicle.Vehicle.elimination_program`, the
+    elimination of :meth:`~railvib.vehicle.Vehicle.condensed_to_wheels`), the coupled
+    system of :func:`coupled_points` is solved with partial pivoting, and the bodies are
+    recovered by back-substitution through the elimination's multipliers: no condensed
+    entry, recovery matrix or excitation array is formed.
+
+    Parameters
+    ----------
+    program : EliminationProgram
+        The vehicle's elimination.
+    f : numpy.ndarray
+        Frequencies in Hz, ``(n_freq,)``.
+    element_stiffness : numpy.ndarray
+        ``K*_e(f)`` of the vehicle's frequency-dependent elements, ``(n_freq, n_element)``,
+        N/m (:meth:`~railvib.vehicle.Vehicle.element_stiffness`).
+    receptance : numpy.ndarray
+        The rail receptance from the wheels to the wheels and then to further observed
+        points, divided by `scale` (m/N over the unit of `scale`: dimensionless from the
+        wave solver), ``(n_freq, n_obs, n_wheel)`` (``n_obs >= n_wheel``).
+    scale : complex
+        Its scale, m/N (``d^3 / EI*`` of the wave solver's dimensionless receptance; 1
+        where `receptance` is in m/N).
+    contact_stiffness : float
+        k_H per contact, N/m.
+    delays : numpy.ndarray
+        Each wheel's input delay, s, ``(n_wheel,)``: its input ``exp(-i 2 pi f t_j)``
+        (:func:`railvib.pem.excitation_vector`).
+    run : callable, optional
+        The point kernel (default: the compiled one; the plain Python function ``_fused``
+        gives the same numbers, slowly).
+
+    Returns
+    -------
+    vehicle, contact_force, rail, wheel_receptance, observed : numpy.ndarray
+        ``(n_freq, n_dof)``, ``(n_freq, n_wheel)``, ``(n_freq, n_wheel)``, the receptance
+        between the wheels ``(n_freq, n_wheel, n_wheel)`` in m/N, and the displacement of
+        the further points ``(n_freq, n_obs - n_wheel)``, m per m of irregularity.
+    bad : numpy.ndarray of bool
+        ``(n_freq,)``: frequencies where a pivot of the vehicle's elimination failed the
+        test of ``program.pivot_threshold``; their responses are not set (the
+        caller solves them densely).
+    """
+    n, n_obs, n_w = receptance.shape
+    u_v = np.empty((n, program.n_dof), dtype=np.complex128)
+    force = np.empty((n, n_w), dtype=np.complex128)
+    rail = np.empty((n, n_w), dtype=np.complex128)
+    rec = np.empty((n, n_w, n_w), dtype=np.complex128)
+    observed = np.empty((n, n_obs - n_w), dtype=np.complex128)
+    bad = np.zeros(n, dtype=np.bool_)
+    (fused_kernel() if run is None else run)(
+        np.ascontiguousarray(f, dtype=float),
+        np.ascontiguousarray(element_stiffness, dtype=np.complex128),
+        np.ascontiguousarray(receptance, dtype=np.complex128),
+        complex(scale),
+        1.0 / float(contact_stiffness),
+        np.ascontiguousarray(delays, dtype=float),
+        program.base,
+        program.term_slot,
+        program.term_element,
+        program.term_factor,
+        program.pivot_slot,
+        program.pivot_dof,
+        program.nb_ptr,
+        program.nb_dof,
+        program.nb_slot,
+        program.update_ptr,
+        program.update,
+        program.wheel_dof,
+        program.wheel_slot,
+        program.column_ptr,
+        program.column_wheel,
+        program.pivot_threshold,
+        u_v,
+        force,
+        rail,
+        rec,
+        observed,
+        bad,
+    )
+    return u_v, force, rail, rec, observed, bad
 
 
 def coupled_points(
@@ -169,3 +285,157 @@ def _points(  # noqa: PLR0913 - the kernel's arrays, as numba takes them
                 for j in range(1, n):
                     acc = acc + receptance[t, q, i, j] * force[c, q, j]
                 rail[c, q, i] = acc
+
+
+def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compiler fuses
+    f: Any,
+    element_stiffness: Any,
+    receptance: Any,
+    scale: complex,
+    h: float,
+    delays: Any,
+    base: Any,
+    term_slot: Any,
+    term_element: Any,
+    term_factor: Any,
+    pivot_slot: Any,
+    pivot_dof: Any,
+    nb_ptr: Any,
+    nb_dof: Any,
+    nb_slot: Any,
+    update_ptr: Any,
+    update: Any,
+    wheel_dof: Any,
+    wheel_slot: Any,
+    column_ptr: Any,
+    column_wheel: Any,
+    threshold: float,
+    u_v: Any,
+    force: Any,
+    rail: Any,
+    rec: Any,
+    observed: Any,
+    bad: Any,
+) -> None:
+    """The fused kernel: each point's condensation, solve and recovery (:func:`fused_points`)."""
+    n_freq, n_obs, n = receptance.shape
+    n_slot, n_dof = base.shape[1], u_v.shape[1]
+    d = np.empty(n_slot, dtype=np.complex128)
+    ell = np.empty(nb_dof.shape[0], dtype=np.complex128)
+    s = np.zeros((n, n), dtype=np.complex128)
+    r = np.empty((n, n), dtype=np.complex128)
+    a = np.empty((n, n), dtype=np.complex128)
+    x = np.empty(n, dtype=np.complex128)
+    p = np.empty(n, dtype=np.complex128)
+    u = np.empty(n_dof, dtype=np.complex128)
+    inv_diag = np.empty(n, dtype=np.complex128)
+    two_pi = 2.0 * np.pi
+    minus_two_pi = -2.0 * np.pi
+    threshold2 = threshold * threshold
+    full = column_wheel.shape[0] == n * n  # no structural zero in S (one car)
+    for q in range(n_freq):
+        # the dynamic stiffness's entries K - omega^2 M + i omega C, and the elements
+        omega = two_pi * f[q]
+        omega2 = omega * omega
+        for k in range(n_slot):
+            d[k] = complex(base[0, k] - omega2 * base[1, k], omega * base[2, k])
+        for t in range(term_slot.shape[0]):
+            k_e = element_stiffness[q, term_element[t]] * term_factor[t]
+            d[term_slot[t]] = d[term_slot[t]] + k_e
+        # the body DOFs eliminated (the pivot test of the stacked elimination)
+        weak = False
+        for st in range(pivot_slot.shape[0]):
+            pivot = d[pivot_slot[st]]
+            size2 = pivot.real * pivot.real + pivot.imag * pivot.imag
+            for k in range(nb_ptr[st], nb_ptr[st + 1]):
+                e = d[nb_slot[k]]
+                if not size2 >= threshold2 * (e.real * e.real + e.imag * e.imag):
+                    weak = True
+            inv = pivot.conjugate() * (1.0 / size2)
+            for k in range(nb_ptr[st], nb_ptr[st + 1]):
+                ell[k] = d[nb_slot[k]] * inv
+            for k in range(update_ptr[st], update_ptr[st + 1]):
+                d[update[k, 0]] = d[update[k, 0]] - ell[update[k, 1]] * d[update[k, 2]]
+        for i in range(n):  # the receptance in m/N, also where the caller solves the point
+            for j in range(n):
+                value = receptance[q, i, j] * scale
+                r[i, j] = value
+                rec[q, i, j] = value
+        if weak:
+            bad[q] = True
+            continue
+        for i in range(n):
+            for j in range(n):
+                slot = wheel_slot[i, j]
+                if slot >= 0:
+                    s[i, j] = d[slot]
+        # (R + h I) S + I, and the input exp(-i 2 pi f t_j)
+        arg = minus_two_pi * f[q]
+        for i in range(n):
+            for j in range(n):
+                acc = h * s[i, j]
+                if full:
+                    for m in range(n):
+                        acc = acc + r[i, m] * s[m, j]
+                else:
+                    for k in range(column_ptr[j], column_ptr[j + 1]):
+                        m = column_wheel[k]
+                        acc = acc + r[i, m] * s[m, j]
+                a[i, j] = acc
+            a[i, i] = a[i, i] + 1.0
+            phase = arg * delays[i]
+            x[i] = complex(np.cos(phase), np.sin(phase))
+        # elimination with partial pivoting
+        for k in range(n):
+            piv = k
+            size2 = a[k, k].real ** 2 + a[k, k].imag ** 2
+            for i in range(k + 1, n):
+                s_i = a[i, k].real ** 2 + a[i, k].imag ** 2
+                if s_i > size2:
+                    piv, size2 = i, s_i
+            if piv != k:
+                for j in range(k, n):
+                    a[k, j], a[piv, j] = a[piv, j], a[k, j]
+                x[k], x[piv] = x[piv], x[k]
+            pivot = a[k, k]
+            inv_diag[k] = pivot.conjugate() * (1.0 / (pivot.real**2 + pivot.imag**2))
+            for i in range(k + 1, n):
+                factor = a[i, k] * inv_diag[k]
+                for j in range(k + 1, n):
+                    a[i, j] = a[i, j] - factor * a[k, j]
+                x[i] = x[i] - factor * x[k]
+        for k in range(n - 1, -1, -1):
+            acc = x[k]
+            for j in range(k + 1, n):
+                acc = acc - a[k, j] * x[j]
+            x[k] = acc * inv_diag[k]
+        # P = -S u_w, u_rail = R P and the further points, the bodies back-substituted
+        for i in range(n):
+            acc = 0.0j
+            if full:
+                for j in range(n):
+                    acc = acc + s[i, j] * x[j]
+            else:
+                for k in range(column_ptr[i], column_ptr[i + 1]):
+                    acc = acc + s[i, column_wheel[k]] * x[column_wheel[k]]
+            p[i] = -acc
+            force[q, i] = -acc
+        for i in range(n):
+            acc = r[i, 0] * p[0]
+            for j in range(1, n):
+                acc = acc + r[i, j] * p[j]
+            rail[q, i] = acc
+        for i in range(n, n_obs):
+            acc = (receptance[q, i, 0] * scale) * p[0]
+            for j in range(1, n):
+                acc = acc + (receptance[q, i, j] * scale) * p[j]
+            observed[q, i - n] = acc
+        for i in range(n):
+            u[wheel_dof[i]] = x[i]
+        for st in range(pivot_slot.shape[0] - 1, -1, -1):
+            acc = 0.0j
+            for k in range(nb_ptr[st], nb_ptr[st + 1]):
+                acc = acc + ell[k] * u[nb_dof[k]]
+            u[pivot_dof[st]] = -acc
+        for i in range(n_dof):
+            u_v[q, i] = u[i]

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.coupled_kernel import coupled_points
+from railvib.coupled_kernel import fused_kernel, fused_points
 from railvib.coupled_kernel import kernel as coupled_kernel
 from railvib.errors import CaseError
 from railvib.pem import excitation_vector, wheel_delays
@@ -52,8 +52,9 @@ FREQUENCY_BLOCK = 4096
 #: receptance stack, 16 n^2 bytes a frequency, stays near the cache (16 MB for 32 wheels)
 FREQUENCY_BLOCK_MANY_WHEELS = 1024
 
-#: more wheels than this and the coupled solve works on dense stacks with LAPACK
-#: (:func:`_coupled_dense`): the stacked elimination's Python-level cost grows as n^3
+#: more wheels than this and the coupled solve on NumPy works on dense stacks with LAPACK
+#: (:func:`_coupled_dense`): the stacked elimination's Python-level cost grows as n^3 (the
+#: compiled fused kernel of one case takes any number)
 DENSE_WHEELS = 8
 
 #: the coupled responses (one container for every solver; kept under its old name)
@@ -151,6 +152,12 @@ class CoupledSystem:
         ------
         slice, FRF
             The block's indices into `f`, and its responses (with the receptance).
+
+        Notes
+        -----
+        Where this process has loaded the compiled wave kernel, each block's vehicle
+        condensation, coupled solve and body recovery run on one fused compiled kernel
+        (:func:`railvib.coupled_kernel.fused_points`); the NumPy path is the reference.
         """
         f = np.atleast_1d(np.asarray(f, dtype=float))
         many = len(self.vehicle.wheels) > DENSE_WHEELS
@@ -160,12 +167,15 @@ class CoupledSystem:
         delays = wheel_delays(self.vehicle.wheel_offsets, self.speed)
         # one case's run uses the compiled kernel only where this process has loaded it
         compiled = use_compiled(f.size, load=False)
-        fast_solve = compiled and compiled_solve(f.size, x.size, True)
+        fast_solve = compiled and fused_kernel() is not None
         extra = np.empty(0) if observe is None else np.atleast_1d(np.asarray(observe, dtype=float))
         x_obs = np.concatenate([x, extra])  # the wheels first: their receptance as without
         for start in range(0, max(f.size, 1), step):
             sl = slice(start, min(start + step, f.size))
             fb = f[sl]
+            if fast_solve:
+                yield sl, self._fused_block(fb, x, x_obs, delays, observe is not None)
+                continue
             if compiled:
                 rec_obs = _compiled_receptance(self.track, fb, x, x_obs)
             else:
@@ -173,15 +183,7 @@ class CoupledSystem:
             rec = np.ascontiguousarray(rec_obs[:, : x.size]) if extra.size else rec_obs
             v = excitation_vector(fb, delays)
             cond = self.vehicle.condensed_to_wheels(fb)
-            if fast_solve:
-                one = np.zeros(1, dtype=np.int64)
-                u_v, force, rail = coupled_points(
-                    rec[None], one, cond.stiffness[None], cond.recovery[None], one,
-                    np.array([self.contact_stiffness]), v[None], one,
-                )  # fmt: skip
-                u_v, force, rail = u_v[0][..., None], force[0][..., None], rail[0][..., None]
-            else:
-                u_v, force, rail = coupled_response(cond, rec, self.contact_stiffness, v[..., None])
+            u_v, force, rail = coupled_response(cond, rec, self.contact_stiffness, v[..., None])
             observed = None
             if observe is not None:
                 observed = np.einsum("fow,fw->fo", rec_obs[:, x.size :], force[..., 0])
@@ -198,6 +200,48 @@ class CoupledSystem:
                     rail_observed=observed,
                 ),
             )
+
+    def _fused_block(
+        self,
+        f: NDArray[np.float64],
+        x: NDArray[np.float64],
+        x_obs: NDArray[np.float64],
+        delays: NDArray[np.float64],
+        observed_wanted: bool,
+    ) -> FRF:
+        """One block of :meth:`frf_blocks` on the compiled fused kernel (:func:`fused_points`).
+
+        The frequencies where the kernel's vehicle elimination fails its pivot test are
+        solved again by the NumPy path (condensed densely with LAPACK's pivoting).
+        """
+        rec_obs, scale = _receptance_parts(self.track, f, x, x_obs)
+        vehicle = self.vehicle
+        u_v, force, rail, rec, observed, bad = fused_points(
+            vehicle.elimination_program,
+            f,
+            vehicle.element_stiffness(f),
+            rec_obs,
+            scale,
+            self.contact_stiffness,
+            delays,
+        )
+        if bad.any():
+            cond = vehicle.condensed_to_wheels(f[bad])
+            v = excitation_vector(f[bad], delays)[..., None]
+            u_b, force_b, rail_b = coupled_response(cond, rec[bad], self.contact_stiffness, v)
+            u_v[bad], force[bad], rail[bad] = u_b[..., 0], force_b[..., 0], rail_b[..., 0]
+            far = rec_obs[bad, x.size :] * scale
+            observed[bad] = np.einsum("fow,fw->fo", far, force_b[..., 0])
+        return FRF(
+            f=f,
+            vehicle=u_v,
+            rail=rail,
+            contact_force=force,
+            dofs=vehicle.dofs,
+            receptance=rec,
+            wheels=vehicle.wheel_names,
+            rail_observed=observed if observed_wanted else None,
+        )
 
 
 def compiled_solve(n_points: int, n_wheels: int, compiled: bool | None = None) -> bool:
@@ -338,8 +382,19 @@ def _compiled_receptance(
 
     ``(n_freq, n_obs, n_w)``, m/N, from the expressions of :func:`track_receptances`.
     """
+    rec, scale = _receptance_parts(track, f, x, x_obs)
+    return rec if scale == 1.0 else rec * scale
+
+
+def _receptance_parts(
+    track: PeriodicTrack, f: NDArray[np.float64], x: NDArray[np.float64], x_obs: NDArray[np.float64]
+) -> tuple[NDArray[np.complex128], complex]:
+    """:func:`_compiled_receptance` as its dimensionless part and its scale ``d^3 / EI*`` (m/N).
+
+    A track off the wave solver (:func:`_stackable`) gives its receptance in m/N, scale 1.
+    """
     if not _stackable(track):
-        return track.receptance(f, x, x_obs)
+        return track.receptance(f, x, x_obs), 1.0
     track.check_frequencies(f)
     omega = 2.0 * np.pi * f
     d, ei = track.sleeper_spacing, _complex_ei(track)
@@ -347,7 +402,7 @@ def _compiled_receptance(
     k = np.asarray(track.support_stiffness(f) * d**3 / ei, dtype=np.complex128)
     rec, condition = _dimensionless(b4, k, x / d, True, x_obs / d)
     warn_if_ill_conditioned(f, condition)
-    return rec * (d**3 / ei)
+    return rec, d**3 / ei
 
 
 def _dimensionless(

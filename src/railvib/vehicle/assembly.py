@@ -13,7 +13,7 @@ from railvib.errors import CaseError
 from railvib.stack import PIVOT_THRESHOLD, put, stacked, to_numpy
 from railvib.vehicle.parts import Attachment, RigidBody, Suspension, Wheel
 
-__all__ = ["Vehicle", "WheelCondensation"]
+__all__ = ["EliminationProgram", "Vehicle", "WheelCondensation"]
 
 GRAVITY = 9.81  # m/s^2
 
@@ -404,6 +404,88 @@ class Vehicle:
             del linked[p]
         return _Elimination(tuple(sorted(pattern)), tuple(steps))
 
+    @cached_property
+    def elimination_program(self) -> EliminationProgram:
+        """The condensation of :meth:`condensed_to_wheels` as integer tables, for a point kernel.
+
+        The same minimum-degree elimination of the body DOFs, each entry it forms a slot
+        of one point's working vector, so a compiled kernel
+        (:func:`railvib.coupled_kernel.fused_points`) runs it point by point for any tree
+        of bodies. Built once per vehicle.
+        """
+        m, c, k = self._matrices
+        elim = self._elimination
+        slots: dict[tuple[int, int], int] = {key: i for i, key in enumerate(elim.pattern)}
+        for _, nb in elim.steps:  # the fill-in, in the order the elimination makes it
+            for ia, a in enumerate(nb):
+                for b in nb[ia:]:
+                    slots.setdefault(_key(a, b), len(slots))
+        n_slot = len(slots)
+        base = np.zeros((3, n_slot))
+        for (i, j), s in slots.items():
+            if (i, j) in elim.pattern:
+                base[:, s] = k[i, j], m[i, j], c[i, j]
+        terms = [
+            (slots[key], e, vec[key[0]] * vec[key[1]])
+            for e, (_, vec) in enumerate(self.elements)
+            for key in elim.pattern
+            if vec[key[0]] * vec[key[1]] != 0.0
+        ]
+        nb_ptr, upd_ptr = [0], [0]
+        nb_dof: list[int] = []
+        nb_slot: list[int] = []
+        upd: list[tuple[int, int, int]] = []
+        for p, nb in elim.steps:
+            first = len(nb_dof)
+            nb_dof += list(nb)
+            nb_slot += [slots[_key(p, j)] for j in nb]
+            nb_ptr.append(len(nb_dof))
+            for ia, a in enumerate(nb):
+                upd += [(slots[_key(a, b)], first + ia, slots[_key(p, b)]) for b in nb[ia:]]
+            upd_ptr.append(len(upd))
+        wheels = [int(w) for w in self.wheel_dofs]
+        wheel_slot = np.array(
+            [[slots.get(_key(a, b), -1) for b in wheels] for a in wheels], dtype=np.int64
+        )
+        return EliminationProgram(
+            n_dof=len(self.dofs),
+            base=base,
+            term_slot=np.array([t[0] for t in terms], dtype=np.int64),
+            term_element=np.array([t[1] for t in terms], dtype=np.int64),
+            term_factor=np.array([t[2] for t in terms], dtype=float),
+            pivot_slot=np.array([slots[(p, p)] for p, _ in elim.steps], dtype=np.int64),
+            pivot_dof=np.array([p for p, _ in elim.steps], dtype=np.int64),
+            nb_ptr=np.array(nb_ptr, dtype=np.int64),
+            nb_dof=np.array(nb_dof, dtype=np.int64),
+            nb_slot=np.array(nb_slot, dtype=np.int64),
+            update_ptr=np.array(upd_ptr, dtype=np.int64),
+            update=np.array(upd, dtype=np.int64).reshape(-1, 3),
+            wheel_dof=np.array(wheels, dtype=np.int64),
+            wheel_slot=wheel_slot,
+            column_ptr=np.concatenate([[0], np.cumsum((wheel_slot >= 0).sum(axis=0))]),
+            column_wheel=np.nonzero((wheel_slot >= 0).T)[1].astype(np.int64),
+            pivot_threshold=PIVOT_THRESHOLD,
+        )
+
+    def element_stiffness(self, f: ArrayLike) -> NDArray[np.complex128]:
+        """``K*_e(f)`` of each frequency-dependent element (:attr:`elements`), N/m.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, ``(n_freq,)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n_freq, n_element)``, complex (``n_element`` may be 0).
+        """
+        f_np = np.atleast_1d(np.asarray(f, dtype=float))
+        out = np.empty((f_np.size, len(self.elements)), dtype=np.complex128)
+        for e, (element, _) in enumerate(self.elements):
+            out[:, e] = np.asarray(element.stiffness(f_np), dtype=complex)
+        return out
+
     @property
     def _matrices(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         return self.mass_matrix, self.damping_matrix, self.stiffness_matrix
@@ -493,6 +575,64 @@ class _Elimination:
 
     pattern: tuple[tuple[int, int], ...]
     steps: tuple[tuple[int, tuple[int, ...]], ...]
+
+
+@dataclass(frozen=True, eq=False)
+class EliminationProgram:
+    """A vehicle's condensation onto its wheels as tables a point kernel executes.
+
+    One point's working vector holds a slot per entry ``(i <= j)`` the elimination forms
+    (the dynamic stiffness's non-zero entries, then the fill-in). All integer tables are
+    ``int64``; ``*_ptr`` tables delimit each elimination step's rows of the next table.
+
+    Attributes
+    ----------
+    n_dof : int
+        The vehicle's DOFs.
+    base : numpy.ndarray
+        ``(3, n_slot)``: each slot's ``K`` (N/m, ...), ``M`` (kg, ...) and ``C``
+        (N s/m, ...); zero for a fill-in slot.
+    term_slot, term_element, term_factor : numpy.ndarray
+        ``(n_term,)``: slot ``term_slot`` gains ``K*_e(f) * term_factor`` of element
+        ``term_element`` (:meth:`Vehicle.element_stiffness`).
+    pivot_slot, pivot_dof : numpy.ndarray
+        ``(n_step,)``: each step's pivot entry and the DOF it eliminates.
+    nb_ptr, nb_dof, nb_slot : numpy.ndarray
+        The DOFs still coupled to each step's pivot, and the slot of their entry with it.
+    update_ptr, update : numpy.ndarray
+        ``update[u] = (target, neighbour, source)``: slot ``target`` loses
+        ``ell[neighbour] * slot[source]`` (``ell``: the step's multipliers, indexed as
+        `nb_dof`).
+    wheel_dof : numpy.ndarray
+        ``(n_wheel,)``: each wheel's DOF.
+    wheel_slot : numpy.ndarray
+        ``(n_wheel, n_wheel)``: the slot of the condensed entry ``S[a, b]``, -1 where it is
+        a structural zero (a train's cars).
+    column_ptr, column_wheel : numpy.ndarray
+        The wheels ``a`` of each column ``b`` whose ``S[a, b]`` is not a structural zero
+        (``S`` is symmetric: each row's too).
+    pivot_threshold : float
+        The pivot test of the stacked elimination (:data:`railvib.stack.PIVOT_THRESHOLD`):
+        a point whose pivot is below this fraction of an entry of its row is flagged.
+    """
+
+    n_dof: int
+    base: NDArray[np.float64]
+    term_slot: NDArray[np.int64]
+    term_element: NDArray[np.int64]
+    term_factor: NDArray[np.float64]
+    pivot_slot: NDArray[np.int64]
+    pivot_dof: NDArray[np.int64]
+    nb_ptr: NDArray[np.int64]
+    nb_dof: NDArray[np.int64]
+    nb_slot: NDArray[np.int64]
+    update_ptr: NDArray[np.int64]
+    update: NDArray[np.int64]
+    wheel_dof: NDArray[np.int64]
+    wheel_slot: NDArray[np.int64]
+    column_ptr: NDArray[np.int64]
+    column_wheel: NDArray[np.int64]
+    pivot_threshold: float
 
 
 def _dynamic_stiffness(
