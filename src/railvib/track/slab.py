@@ -213,6 +213,11 @@ class SlabTrack(PeriodicTrack):
         Continuous foundation, complex stiffness per metre of slab, N/m^2.
     bearing : PadModel, optional
         Discrete bearing, complex stiffness per bearing, N/m (instead of `foundation`).
+    slab_damping_time : float
+        Viscous (Kelvin-Voigt) slab damping tau_s in s (>= 0; not a case-file key):
+        ``EI_s* = EI_s (1 + i eta_s + i omega tau_s)``, the causal stand-in for a loss
+        factor that ``railvib validate`` puts in its time-domain model and in the
+        frequency-domain solution it compares with it.
     """
 
     slab_bending_stiffness: float = 0.0
@@ -220,6 +225,7 @@ class SlabTrack(PeriodicTrack):
     slab_loss_factor: float = 0.0
     foundation: PadModel | None = None
     bearing: PadModel | None = None
+    slab_damping_time: float = 0.0
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -229,6 +235,8 @@ class SlabTrack(PeriodicTrack):
             model = getattr(self, key)
             if model is not None and not isinstance(model, PadModel):
                 raise CaseError(f"track.{key}", model, "a PadModel")
+        if not (np.isfinite(self.slab_damping_time) and self.slab_damping_time >= 0.0):
+            raise CaseError("track.slab_damping_time", self.slab_damping_time, ">= 0 (s)")
         if (self.foundation is None) == (self.bearing is None):
             raise CaseError(
                 "track.foundation",
@@ -445,15 +453,16 @@ class SlabTrack(PeriodicTrack):
         digits, and the exact shape functions' integrals are taken from their series in
         ``lambda`` (:data:`_BAY_SERIES`), m (per m) and m^2 (per rad).
         """
-        ei_s = self.slab_bending_stiffness * (
-            1.0 + 1j * max(self.slab_loss_factor, VANISHING_LOSS_FACTOR)
+        ei_s = self._slab_stiffness(f)
+        slab_load = np.asarray(
+            self.slab_mass_per_length * (2.0 * np.pi * f) ** 2 - layers["foundation"],
+            dtype=np.complex128,
         )
-        slab_load = self.slab_mass_per_length * (2.0 * np.pi * f) ** 2 - layers["foundation"]
         out = np.empty((f.size, lengths.size, 4), dtype=np.complex128)
         for j, length in enumerate(lengths):
             lam = slab_load * length**4 / ei_s
             small = np.abs(lam) < 1.0
-            k = span_stiffness(lam[~small], length, ei_s)
+            k = _slab_span(slab_load[~small], length, ei_s[~small])
             out[~small, j] = -(k[:, 0] + k[:, 2]) / slab_load[~small, None]
             powers = lam[small, None] ** np.arange(_BAY_SERIES.shape[1])[None, :]
             a, b = (powers @ _BAY_SERIES[0]), (powers @ _BAY_SERIES[1]) * length
@@ -667,20 +676,14 @@ class SlabTrack(PeriodicTrack):
                 rotary = rail.rotary_inertia * omega2 * length**2 / ei_r
                 k = span_stiffness(beta4, length, ei_r, ei_r / (kga * length**2), rotary)
             spans.append((i, i + 1, k))
-        ei_s = self.slab_bending_stiffness * (
-            1.0 + 1j * max(self.slab_loss_factor, VANISHING_LOSS_FACTOR)
-        )
+        ei_s = self._slab_stiffness(f)
         k_f = layers.get("foundation", 0.0)
-        slab_load = self.slab_mass_per_length * omega2 - k_f
+        slab_load = np.asarray(self.slab_mass_per_length * omega2 - k_f, dtype=np.complex128)
         for i, length in enumerate(np.diff(slab_x)):
             if length <= _MERGE * period:
                 continue  # the joint: two slab ends at one place, joined by springs below
             spans.append(
-                (
-                    int(slab_nodes[i]),
-                    int(slab_nodes[i + 1]),
-                    span_stiffness(slab_load * length**4 / ei_s, length, ei_s),
-                )
+                (int(slab_nodes[i]), int(slab_nodes[i + 1]), _slab_span(slab_load, length, ei_s))
             )
         springs: list[tuple[int, int | None, int, NDArray[np.complex128]]] = []
         for x in self._fasteners():
@@ -703,6 +706,17 @@ class SlabTrack(PeriodicTrack):
     def _slab_crosses(self) -> bool:
         """True if the slab's DOFs cross the cell boundary (continuous or jointed slab)."""
         return True
+
+    def _slab_stiffness(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
+        """``EI_s* = EI_s (1 + i eta_s + i omega tau_s)`` at `f` (Hz), N m^2, ``(n_freq,)``.
+
+        An undamped slab takes the loss factor :data:`VANISHING_LOSS_FACTOR`.
+        """
+        eta = max(self.slab_loss_factor, VANISHING_LOSS_FACTOR)
+        viscous = 2.0 * np.pi * f * self.slab_damping_time
+        return np.asarray(
+            self.slab_bending_stiffness * (1.0 + 1j * (eta + viscous)), dtype=np.complex128
+        )
 
     def _locate(self, x: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
         """Cell index and local position in ``[0, period)`` of each rail position (m)."""
@@ -959,6 +973,22 @@ class UnitSlabTrack(SlabTrack):
 
     def _slab_crosses(self) -> bool:
         return self._joints() is not None
+
+
+def _slab_span(
+    slab_load: NDArray[np.complex128], length: float, ei_s: NDArray[np.complex128]
+) -> NDArray[np.complex128]:
+    """Exact dynamic stiffness of a slab span, ``(n_freq, 4, 4)``, SI.
+
+    `slab_load` is ``m_s omega^2 - k_f`` (N/m^2) and `ei_s` the complex ``EI_s*`` (N m^2)
+    per frequency: :func:`railvib.track.cells.span_stiffness` at unit ``EI``, scaled by
+    each frequency's ``EI_s*``.
+    """
+    if np.all(ei_s == ei_s[:1]):  # no viscous part: one EI_s*, as a loss factor alone
+        one = complex(ei_s[0]) if ei_s.size else 1.0  # (no frequency: any)
+        return span_stiffness(slab_load * length**4 / ei_s, length, one)
+    unit = span_stiffness(slab_load * length**4 / ei_s, length, 1.0)
+    return np.asarray(unit * ei_s[:, None, None], dtype=np.complex128)
 
 
 def _merged(x: NDArray[np.float64], period: float) -> NDArray[np.float64]:
