@@ -109,13 +109,13 @@ def branch_matrices(
     Parameters
     ----------
     top : numpy.ndarray
-        DOFs above the layer, one per element of the layer.
+        DOFs above the layer (dimensionless indices), one per element of the layer.
     bottom : numpy.ndarray or None
-        DOFs below it, same length, or None for the ground.
+        DOFs below it (dimensionless indices), same length, or None for the ground.
     branches : Branches
         :func:`layer_branches` of the layer (its parallel part is left to the caller).
     first : int
-        Number of the first internal DOF.
+        Number of the first internal DOF (dimensionless index).
 
     Returns
     -------
