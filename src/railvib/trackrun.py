@@ -236,7 +236,9 @@ def track_dataset(
         data["rail_seat_displacement"] = (
             fs,
             np.abs(sup.displacement["rail"]),
-            _attrs("m/N", "|rail displacement| at each rail seat per unit force"),
+            _attrs(
+                "m/N", "|rail displacement| at each support (a slab bay: its centre) per unit force"
+            ),
         )
         for layer, values in sup.force.items():
             data[f"{layer}_force"] = (
@@ -298,7 +300,11 @@ def track_dataset(
         "band_nominal": ("band", decay.nominal, {"long_name": "nominal band frequency, Hz"}),
     }
     if sup is not None:
-        coords["support"] = ("support", sup.x, _attrs("m", "rail seat along the rail"))
+        coords["support"] = (
+            "support",
+            sup.x,
+            _attrs("m", "rail seat (bearing, slab bay centre) along the rail"),
+        )
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(
         {

@@ -384,15 +384,6 @@ def _system(**overrides):
             "track.pad.model",
             "fractional_zener (with [track.pad.tts])",
         ),
-        (
-            {
-                "track": {
-                    "pad": {"model": "hysteretic", "stiffness_n_per_m": 5e7, "loss_factor": 0.2}
-                }
-            },
-            "track.pad.model",
-            "hysteretic",
-        ),
         ({"track": {"rail": {"shear_stiffness": 2.45e8}}}, "track.rail.shear_stiffness", 2.45e8),
         ({"track": {"rail": {"loss_factor": 0.01}}}, "track.rail.loss_factor", 0.01),
     ],

@@ -135,8 +135,9 @@ def test_a_slab_track_gets_its_receptance_waves_decay_and_bearing_forces(tmp_pat
     assert ds.sizes["wave"] == track.propagation_constants(f[:1]).shape[1]
 
 
-def test_a_slab_on_a_continuous_foundation_gets_no_support_forces(tmp_path):
-    # a continuous foundation has no discrete supports: the other outputs only
+def test_a_slab_on_a_continuous_foundation_gets_its_bay_forces(tmp_path):
+    # the foundation force per slab bay (fastener spacing), at the bay centres (was: no
+    # support variables); its values: tests/validation/test_slab14b_foundation_forces.py
     case = tmp_path / "slab.toml"
     case.write_text(
         'preset = "wang2017_metro"\n[track]\nmodel = "floating_slab"\nsleeper_spacing = 0.6\n'
@@ -148,6 +149,9 @@ def test_a_slab_on_a_continuous_foundation_gets_no_support_forces(tmp_path):
     out = tmp_path / "out"
     assert main(["track", str(case), "-o", str(out), *FAST, "--no-plots"]) == 0
     ds = load_netcdf(out / "track.nc")
-    assert "support" not in ds.dims
-    assert "foundation_force" not in ds
+    np.testing.assert_allclose(np.diff(ds["support"].values), 0.6, rtol=1e-12)
+    assert np.allclose(ds["support"].values % 0.6, 0.3)
+    assert ds["foundation_force"].attrs["units"] == "N/N"
+    assert "slab_displacement" in ds
+    assert "bearing_force" not in ds
     assert np.isfinite(ds["decay_rate"].values).all()

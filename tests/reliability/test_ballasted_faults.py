@@ -77,19 +77,25 @@ def test_thompson_preset_runs(tmp_path, monkeypatch):
     assert (tmp_path / "out" / "results.nc").is_file()
 
 
-def test_validate_refuses_a_hysteretic_ballasted_track_in_one_line_before_any_work(
+def test_validate_refuses_a_fractional_derivative_pad_in_one_line_before_any_work(
     tmp_path, monkeypatch, capsys
 ):
     # was: the reference models were built for a rigid base and the comparison printed
     # an FE error of 1.3e+02 (relative) and FAILED for a correct result; the time-domain
-    # model now has sleeper DOFs, and refuses the preset's hysteretic pad (no exact
-    # time-domain form) by its key before any work
+    # model now has sleeper DOFs and fits a hysteretic pad by a causal one
+    # (test_slab14b_validate_presets.py), but a fractional-derivative pad has no
+    # time-domain form there: refused by its key before any work
     monkeypatch.chdir(tmp_path)
-    (tmp_path / "case.toml").write_text(BASE, encoding="utf-8")
+    zener = (
+        '[track.pad]\nmodel = "fractional_zener"\nk0_n_per_m = 2e8\nk_inf_n_per_m = 4e8\n'
+        "tau_s = 1e-3\nalpha = 0.5\n"
+    )
+    (tmp_path / "case.toml").write_text(BASE + zener, encoding="utf-8")
     before = set(tmp_path.rglob("*"))
     assert main(["validate", "case.toml", "--quick", "-o", "out"]) == 2
     captured = capsys.readouterr()
     lines = [s for s in captured.err.splitlines() if s.strip() and not s.startswith("warning:")]
     assert len(lines) == 1, captured.err
-    assert lines[0].startswith("error: track.pad.model = 'hysteretic': spring_damper")
+    assert lines[0].startswith("error: track.pad.model = 'fractional_zener': spring_damper")
+    assert "Traceback" not in captured.out + captured.err
     assert set(tmp_path.rglob("*")) == before

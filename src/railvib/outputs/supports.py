@@ -9,10 +9,11 @@ and its PSD is ``|H|^2 S_r``.
 
 The seat of each wheel is the rail seat nearest it (at exactly mid-span, the one ahead).
 Forces are per rail seat of one rail: a ``rail_pair`` track, whose seats stand for both
-rails, is divided by its factor 2. A slab track on bearings gives the pad and the bearing
-nearest each wheel under all the contact forces together
-(:meth:`railvib.track.slab.SlabTrack.seat_forces`: the slab couples the seats); one on a
-continuous foundation has no discrete supports and gets no support-force variables.
+rails, is divided by its factor 2. A slab track gives its supports under all the contact
+forces together (:meth:`railvib.track.slab.SlabTrack.seat_forces`: the slab couples the
+seats): on bearings the pad and the bearing nearest each wheel, on a continuous foundation
+the foundation under the slab bay (fastener spacing) holding each wheel, ``k_f* int w_s dx``
+over the bay, per bay of one rail.
 """
 
 from __future__ import annotations
@@ -96,7 +97,8 @@ def support_force_variables(
     dict of str to xarray.DataArray
         ``psd_support_force`` (``frequency``, ``wheel``, ``layer``), N^2/Hz, and
         ``support_force_rms`` (``wheel``, ``layer``), N, with the ``layer`` coordinate
-        (``pad``, then ``ballast``, ``subgrade`` or ``bearing`` where the track has them) and
+        (``pad``, then ``ballast``, ``subgrade`` or ``bearing`` where the track has them;
+        ``foundation`` alone for a slab bay on a continuous foundation) and
         ``support_position`` (``wheel``, m); empty for a track without seat forces.
     """
     track = system.track
@@ -105,10 +107,7 @@ def support_force_variables(
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
         contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
-        try:
-            support = track.seat_forces(f, system.wheel_positions, contact)
-        except NotImplementedError:  # a continuous foundation: no discrete supports
-            return {}
+        support = track.seat_forces(f, system.wheel_positions, contact)
         slab_layers = list(support.force)
         psd = np.stack(
             [np.abs(support.force[name] / per_rail) ** 2 * s_r[:, None] for name in slab_layers],

@@ -66,6 +66,23 @@ MAX_EULER_SPAN_WAVENUMBER = 300.0
 #: set stays in the cache instead of streaming (n_freq, n_dof, n_dof) arrays through memory
 CELL_BLOCK_ENTRIES = 2**20
 
+#: the integrals ``a``, ``b`` of a slab bay's exact shape functions over ``[0, L]`` as
+#: series in ``lambda = (m_s omega^2 - k_f) L^4 / EI_s*``: ``int w dx = L (a (w_a + w_b) +
+#: b L (theta_a - theta_b))``, rows ``a``, ``b``, columns the powers 0-5 of ``lambda``.
+#: Term by term: ``w = sum lambda^k w_k``, ``w_0`` the cubic Hermite shape function,
+#: ``w_k'''' = w_k-1`` with zero end values and slopes, integrated exactly (rational
+#: arithmetic); the first two terms are the consistent mass matrix's ``1/2``, ``1/12``.
+#: The coefficients fall ~500-fold a power (the clamped bay's first eigenvalue
+#: ``lambda = 4.73^4``), so below ``|lambda| = 1`` the omitted ``lambda^6`` term is < 1e-19
+_BAY_SERIES = np.array(
+    [
+        [1 / 2, 1 / 1440, 1 / 725760, 2879 / 1046139494400, 3911 / 711374856192000,
+         74070881 / 6744004366665646080000],
+        [1 / 12, 1 / 6720, 71 / 239500800, 59 / 99632332800, 863449 / 729870602452992000,
+         22217387 / 9400733359594536960000],
+    ]
+)  # fmt: skip
+
 #: positions closer than this fraction of the period are one node
 _MERGE = 1e-9
 
@@ -196,6 +213,11 @@ class SlabTrack(PeriodicTrack):
         Continuous foundation, complex stiffness per metre of slab, N/m^2.
     bearing : PadModel, optional
         Discrete bearing, complex stiffness per bearing, N/m (instead of `foundation`).
+    slab_damping_time : float
+        Viscous (Kelvin-Voigt) slab damping tau_s in s (>= 0; not a case-file key):
+        ``EI_s* = EI_s (1 + i eta_s + i omega tau_s)``, the causal stand-in for a loss
+        factor that ``railvib validate`` puts in its time-domain model and in the
+        frequency-domain solution it compares with it.
     """
 
     slab_bending_stiffness: float = 0.0
@@ -203,6 +225,7 @@ class SlabTrack(PeriodicTrack):
     slab_loss_factor: float = 0.0
     foundation: PadModel | None = None
     bearing: PadModel | None = None
+    slab_damping_time: float = 0.0
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -212,6 +235,8 @@ class SlabTrack(PeriodicTrack):
             model = getattr(self, key)
             if model is not None and not isinstance(model, PadModel):
                 raise CaseError(f"track.{key}", model, "a PadModel")
+        if not (np.isfinite(self.slab_damping_time) and self.slab_damping_time >= 0.0):
+            raise CaseError("track.slab_damping_time", self.slab_damping_time, ">= 0 (s)")
         if (self.foundation is None) == (self.bearing is None):
             raise CaseError(
                 "track.foundation",
@@ -311,7 +336,11 @@ class SlabTrack(PeriodicTrack):
                 )
 
     def support_positions(self, x: ArrayLike) -> NDArray[np.float64]:
-        """The bearing nearest each rail position `x` (m; the one ahead at a tie), m.
+        """The support of each rail position `x` (m): its nearest bearing or its bay, m.
+
+        On bearings, the bearing nearest `x` (the one ahead at a tie); on a continuous
+        foundation, the centre of the slab bay (span between consecutive slab nodes: the
+        fasteners and the slab ends) that holds `x` (the one ahead at a node).
 
         Parameters
         ----------
@@ -321,36 +350,49 @@ class SlabTrack(PeriodicTrack):
         Returns
         -------
         numpy.ndarray
-            Bearing positions, m, shape of `x`.
-
-        Raises
-        ------
-        NotImplementedError
-            A slab on a continuous foundation (it has no discrete supports).
+            Bearing positions or bay centres, m, shape of `x`.
         """
         x = np.asarray(x, dtype=float)
         return np.asarray(
             [self._supports_around(float(v), 0)[0] for v in x.ravel()], dtype=float
         ).reshape(x.shape)
 
+    def _bays(self) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
+        """The slab bays in the cell: ``(first slab node, start m, end m)`` of each.
+
+        A bay is a slab span between consecutive slab nodes (a joint's two coincident slab
+        ends bound none).
+        """
+        slab_x = self._slab_nodes()
+        first = np.flatnonzero(np.diff(slab_x) > _MERGE * self.period)
+        return first, slab_x[first], slab_x[first + 1]
+
     def _supports_around(self, x: float, n: int) -> NDArray[np.float64]:
-        """The bearing nearest `x` (m) and `n` on each side of it, m, increasing."""
-        if self.bearing is None:
-            raise NotImplementedError(
-                f"{type(self).__name__} on a continuous foundation has no discrete supports"
-            )
+        """The support of `x` (m) and `n` on each side of it, m, increasing.
+
+        Bearings (the nearest, the one ahead at a tie) or bay centres (the bay holding `x`).
+        """
         period = self.period
         cells = np.floor(x / period) + np.arange(-n - 1, n + 2)
-        every = np.sort((cells[:, None] * period + self._bearings()[None, :]).ravel())
-        # the one ahead at a tie: 1e-9 of the period of rounding still counts as a tie
-        nearest = int(np.argmin(np.abs(every - x) - 1e-9 * period * (every > x)))
-        return every[nearest - n : nearest + n + 1]
+        if self.bearing is not None:
+            every = np.sort((cells[:, None] * period + self._bearings()[None, :]).ravel())
+            # the one ahead at a tie: 1e-9 of the period of rounding still counts as a tie
+            nearest = int(np.argmin(np.abs(every - x) - 1e-9 * period * (every > x)))
+            return every[nearest - n : nearest + n + 1]
+        _, start, end = self._bays()
+        starts = (cells[:, None] * period + start[None, :]).ravel()
+        centres = (cells[:, None] * period + (start + end)[None, :] / 2.0).ravel()
+        # the bay ahead at a node: 1e-9 of the period of rounding still counts as the node
+        holding = int(np.flatnonzero(starts <= x + 1e-9 * period)[-1])
+        return centres[holding - n : holding + n + 1]
 
     def _seat_transfer(
         self, f: NDArray[np.float64], x_load: NDArray[np.float64], x_seat: NDArray[np.float64]
     ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], dict[str, NDArray]]:
-        """Rail and slab displacement at bearings `x_seat` per unit rail loads at `x_load`.
+        """Rail and slab displacement at the supports `x_seat` per unit rail loads at `x_load`.
 
+        On bearings the slab's at each bearing; on a foundation its mean over each bay
+        (:meth:`_bay_weights`; `x_seat` the bays' centres, where the rail's is taken).
         Returns ``(rail, slab, layers)``: m/N, ``(n_freq, n_seat, n_load)`` each, and
         :meth:`layer_stiffness` at `f`.
         """
@@ -359,22 +401,73 @@ class SlabTrack(PeriodicTrack):
         seat_cell, seat_x = self._locate(x_seat)
         layers = self.layer_stiffness(f)
         slab_x = self._slab_nodes()
-        n_rail = self._rail_spans(load_x).size
-        slab_dofs = np.array([2 * (n_rail + _at(slab_x, x)) for x in seat_x], dtype=np.intp)
-        rail = np.empty((f.size, x_seat.size, x_load.size), dtype=np.complex128)
+        bays = self.foundation is not None
+        extra = np.concatenate([load_x, seat_x]) if bays else load_x
+        n_rail = self._rail_spans(extra).size
+        if bays:
+            first, start, end = self._bays()
+            # the bay of each seat (its centre), its four slab DOFs (w, theta at both ends)
+            bay = np.array([int(np.argmin(np.abs((start + end) / 2 - x))) for x in seat_x])
+            node = n_rail + first[bay]
+            slab_dofs = (2 * node[:, None] + np.array([0, 1, 2, 3])[None, :]).ravel()
+            lengths = (end - start)[bay]
+        else:
+            slab_dofs = np.array([2 * (n_rail + _at(slab_x, x)) for x in seat_x], dtype=np.intp)
+        n_seat = x_seat.size
+        rail = np.empty((f.size, n_seat, x_load.size), dtype=np.complex128)
         slab = np.empty_like(rail)
-        for block in self._blocks(f, load_x):
+        for block in self._blocks(f, extra):
             part = {name: k[block] for name, k in layers.items()}
-            cell, rail_nodes = self._cell(f[block], load_x, part)
+            cell, rail_nodes = self._cell(f[block], extra, part)
             waves = cell_waves(cell)
             load = (load_cell, _rail_dofs(rail_nodes, load_x))
+            slab_cell = np.repeat(seat_cell, slab_dofs.size // n_seat)
             obs = (
-                np.concatenate([seat_cell, seat_cell]),
+                np.concatenate([seat_cell, slab_cell]),
                 np.concatenate([_rail_dofs(rail_nodes, seat_x), slab_dofs]),
             )
             both = cell_receptance(waves, load, obs)
-            rail[block], slab[block] = both[:, : x_seat.size], both[:, x_seat.size :]
+            rail[block], slab_block = both[:, :n_seat], both[:, n_seat:]
+            if bays:
+                # the mean over each bay: its integral (the weights times its end DOFs) / L
+                q = slab_block.reshape(slab_block.shape[0], n_seat, 4, -1)
+                weights = self._bay_weights(f[block], lengths, part)
+                slab_block = np.einsum("fsd,fsdl->fsl", weights, q) / lengths[None, :, None]
+            slab[block] = slab_block
         return rail, slab, layers
+
+    def _bay_weights(
+        self,
+        f: NDArray[np.float64],
+        lengths: NDArray[np.float64],
+        layers: dict[str, NDArray[np.complex128]],
+    ) -> NDArray[np.complex128]:
+        """``int w dx`` over slab bays of `lengths` (m) per unit end DOF, ``(n_f, n_bay, 4)``.
+
+        The bay's exact deflection (``EI_s* w'''' = (m_s omega^2 - k_f) w``, as in the cell)
+        integrated: by the bay's vertical equilibrium ``int w dx = -(F_a + F_b) / (m_s
+        omega^2 - k_f)``, ``F_a + F_b`` the shear rows of its exact dynamic stiffness
+        (:func:`railvib.track.cells.span_stiffness`) times ``(w_a, theta_a, w_b,
+        theta_b)``; where ``|lambda| = |(m_s omega^2 - k_f) L^4 / EI_s*| <`` 1 (the static
+        limit, a lossless foundation's cut-on) that quotient loses ``1 / |lambda|`` of its
+        digits, and the exact shape functions' integrals are taken from their series in
+        ``lambda`` (:data:`_BAY_SERIES`), m (per m) and m^2 (per rad).
+        """
+        ei_s = self._slab_stiffness(f)
+        slab_load = np.asarray(
+            self.slab_mass_per_length * (2.0 * np.pi * f) ** 2 - layers["foundation"],
+            dtype=np.complex128,
+        )
+        out = np.empty((f.size, lengths.size, 4), dtype=np.complex128)
+        for j, length in enumerate(lengths):
+            lam = slab_load * length**4 / ei_s
+            small = np.abs(lam) < 1.0
+            k = _slab_span(slab_load[~small], length, ei_s[~small])
+            out[~small, j] = -(k[:, 0] + k[:, 2]) / slab_load[~small, None]
+            powers = lam[small, None] ** np.arange(_BAY_SERIES.shape[1])[None, :]
+            a, b = (powers @ _BAY_SERIES[0]), (powers @ _BAY_SERIES[1]) * length
+            out[small, j] = length * np.stack([a, b, a, -b], axis=1)
+        return out
 
     @staticmethod
     def _bearing_layers(
@@ -395,13 +488,56 @@ class SlabTrack(PeriodicTrack):
             foundation="bearing",
         )
 
-    def support_response(self, f: ArrayLike, x_load: float, n_supports: int) -> SupportResponse:
-        """The bearings nearest a unit rail load: rail and slab displacements, layer forces.
+    def _foundation_layers(
+        self,
+        x: NDArray[np.float64],
+        rail: NDArray[np.complex128],
+        slab: NDArray[np.complex128],
+        layers: dict[str, NDArray[np.complex128]],
+    ) -> SupportResponse:
+        """The foundation under the bays centred at `x` from the slab's mean over each."""
+        lengths = np.array([self._bay_length(float(v)) for v in x])
+        k_bay = layers["foundation"][:, None] * lengths[None, :]  # N/m of each bay
+        return SupportResponse(
+            x=np.asarray(x, dtype=float),
+            displacement={"rail": rail, "slab": slab},
+            compression={"foundation": slab},
+            force={"foundation": k_bay * slab},
+            stiffness={"foundation": k_bay},
+            foundation="foundation",
+        )
 
-        The supports are the bearings (every one carries a fastener above it): the nearest
-        to `x_load` and `n_supports` on each side. The rail and slab displacements there
-        come from the cell's solution (the slab's DOF at the bearing), the pad carries
-        ``K_p (w_r - w_s)``, the bearing ``K_b w_s`` to the ground.
+    def _bay_length(self, x: float) -> float:
+        """Length in m of the bay centred at `x` (m)."""
+        _, local = self._locate(np.array([x]))
+        _, start, end = self._bays()
+        return float((end - start)[np.argmin(np.abs((start + end) / 2 - local[0]))])
+
+    def _layers(
+        self,
+        x: NDArray[np.float64],
+        rail: NDArray[np.complex128],
+        slab: NDArray[np.complex128],
+        layers: dict[str, NDArray[np.complex128]],
+    ) -> SupportResponse:
+        """The support layers from :meth:`_seat_transfer`'s rail and slab displacements."""
+        if self.bearing is not None:
+            return self._bearing_layers(x, rail, slab, layers)
+        return self._foundation_layers(x, rail, slab, layers)
+
+    def support_response(self, f: ArrayLike, x_load: float, n_supports: int) -> SupportResponse:
+        """The supports nearest a unit rail load: rail and slab displacements, layer forces.
+
+        On bearings the supports are the bearings (every one carries a fastener above it):
+        the nearest to `x_load` and `n_supports` on each side; the rail and slab
+        displacements there come from the cell's solution (the slab's DOF at the bearing),
+        the pad carries ``K_p (w_r - w_s)``, the bearing ``K_b w_s`` to the ground. On a
+        continuous foundation the supports are the slab bays (spans between consecutive
+        fasteners or slab ends: a fastener spacing of a floating slab), the one holding
+        `x_load` and `n_supports` on each side, at their centres: the foundation under a
+        bay carries ``k_f* int w_s dx`` over it (the exact slab deflection integrated,
+        :meth:`_bay_weights`), ``"slab"`` is the slab's mean displacement over the bay and
+        ``"rail"`` the rail's at its centre.
 
         Parameters
         ----------
@@ -410,18 +546,14 @@ class SlabTrack(PeriodicTrack):
         x_load : float
             Position of the unit load along the rail, m.
         n_supports : int
-            Bearings on each side of the one nearest the load (>= 0).
+            Supports on each side of the one nearest the load (>= 0).
 
         Returns
         -------
         SupportResponse
-            Masses ``"rail"``, ``"slab"``; layers ``"pad"``, ``"bearing"`` (the foundation).
-
-        Raises
-        ------
-        NotImplementedError
-            A slab on a continuous foundation (no discrete supports: ``railvib track`` then
-            writes the receptances, waves and decay rate without support forces).
+            Masses ``"rail"``, ``"slab"``; layers ``"pad"``, ``"bearing"`` (the foundation)
+            on bearings, ``"foundation"`` (N/N per bay; stiffness ``k_f* L_bay``, N/m) on a
+            continuous foundation.
         """
         if not np.isfinite(x_load):
             raise CaseError("x_load", x_load, "a finite position (m)")
@@ -430,12 +562,15 @@ class SlabTrack(PeriodicTrack):
         f = _as_freq(f)
         x = self._supports_around(float(x_load), int(n_supports))
         rail, slab, layers = self._seat_transfer(f, np.array([float(x_load)]), x)
-        return self._bearing_layers(x, rail[:, :, 0], slab[:, :, 0], layers)
+        return self._layers(x, rail[:, :, 0], slab[:, :, 0], layers)
 
     def seat_forces(
         self, f: ArrayLike, x_load: ArrayLike, loads: NDArray[np.complex128]
     ) -> SupportResponse:
-        """The bearing nearest each load under all the loads together (the coupled run).
+        """The support of each load under all the loads together (the coupled run).
+
+        The bearing nearest each load, or on a continuous foundation the slab bay holding
+        it (:meth:`support_positions`).
 
         Parameters
         ----------
@@ -449,19 +584,14 @@ class SlabTrack(PeriodicTrack):
         Returns
         -------
         SupportResponse
-            At the bearing nearest each load, ``(n_freq, n_load)``: in the units of
-            `loads` for forces, m per unit of `loads` for displacements.
-
-        Raises
-        ------
-        NotImplementedError
-            A slab on a continuous foundation (no discrete supports).
+            At the support of each load, ``(n_freq, n_load)``: in the units of `loads` for
+            forces, m per unit of `loads` for displacements.
         """
         f = _as_freq(f)
         x_load = np.atleast_1d(np.asarray(x_load, dtype=float))
         seats = self.support_positions(x_load)
         rail, slab, layers = self._seat_transfer(f, x_load, seats)
-        return self._bearing_layers(
+        return self._layers(
             seats,
             np.einsum("fsl,fl->fs", rail, loads),
             np.einsum("fsl,fl->fs", slab, loads),
@@ -546,20 +676,14 @@ class SlabTrack(PeriodicTrack):
                 rotary = rail.rotary_inertia * omega2 * length**2 / ei_r
                 k = span_stiffness(beta4, length, ei_r, ei_r / (kga * length**2), rotary)
             spans.append((i, i + 1, k))
-        ei_s = self.slab_bending_stiffness * (
-            1.0 + 1j * max(self.slab_loss_factor, VANISHING_LOSS_FACTOR)
-        )
+        ei_s = self._slab_stiffness(f)
         k_f = layers.get("foundation", 0.0)
-        slab_load = self.slab_mass_per_length * omega2 - k_f
+        slab_load = np.asarray(self.slab_mass_per_length * omega2 - k_f, dtype=np.complex128)
         for i, length in enumerate(np.diff(slab_x)):
             if length <= _MERGE * period:
                 continue  # the joint: two slab ends at one place, joined by springs below
             spans.append(
-                (
-                    int(slab_nodes[i]),
-                    int(slab_nodes[i + 1]),
-                    span_stiffness(slab_load * length**4 / ei_s, length, ei_s),
-                )
+                (int(slab_nodes[i]), int(slab_nodes[i + 1]), _slab_span(slab_load, length, ei_s))
             )
         springs: list[tuple[int, int | None, int, NDArray[np.complex128]]] = []
         for x in self._fasteners():
@@ -582,6 +706,17 @@ class SlabTrack(PeriodicTrack):
     def _slab_crosses(self) -> bool:
         """True if the slab's DOFs cross the cell boundary (continuous or jointed slab)."""
         return True
+
+    def _slab_stiffness(self, f: NDArray[np.float64]) -> NDArray[np.complex128]:
+        """``EI_s* = EI_s (1 + i eta_s + i omega tau_s)`` at `f` (Hz), N m^2, ``(n_freq,)``.
+
+        An undamped slab takes the loss factor :data:`VANISHING_LOSS_FACTOR`.
+        """
+        eta = max(self.slab_loss_factor, VANISHING_LOSS_FACTOR)
+        viscous = 2.0 * np.pi * f * self.slab_damping_time
+        return np.asarray(
+            self.slab_bending_stiffness * (1.0 + 1j * (eta + viscous)), dtype=np.complex128
+        )
 
     def _locate(self, x: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
         """Cell index and local position in ``[0, period)`` of each rail position (m)."""
@@ -838,6 +973,22 @@ class UnitSlabTrack(SlabTrack):
 
     def _slab_crosses(self) -> bool:
         return self._joints() is not None
+
+
+def _slab_span(
+    slab_load: NDArray[np.complex128], length: float, ei_s: NDArray[np.complex128]
+) -> NDArray[np.complex128]:
+    """Exact dynamic stiffness of a slab span, ``(n_freq, 4, 4)``, SI.
+
+    `slab_load` is ``m_s omega^2 - k_f`` (N/m^2) and `ei_s` the complex ``EI_s*`` (N m^2)
+    per frequency: :func:`railvib.track.cells.span_stiffness` at unit ``EI``, scaled by
+    each frequency's ``EI_s*``.
+    """
+    if np.all(ei_s == ei_s[:1]):  # no viscous part: one EI_s*, as a loss factor alone
+        one = complex(ei_s[0]) if ei_s.size else 1.0  # (no frequency: any)
+        return span_stiffness(slab_load * length**4 / ei_s, length, one)
+    unit = span_stiffness(slab_load * length**4 / ei_s, length, 1.0)
+    return np.asarray(unit * ei_s[:, None, None], dtype=np.complex128)
 
 
 def _merged(x: NDArray[np.float64], period: float) -> NDArray[np.float64]:

@@ -34,6 +34,7 @@ from railvib.track.slab import FloatingSlabTrack, SlabTrack, UnitSlabTrack  # pa
 from railvib.validation._legacy import SYSTEM_FROM_BUNDLE, bundle_form, warn_deprecated
 from railvib.validation.finite_slab import FiniteSlabTrack
 from railvib.validation.finite_track import FiniteTrack
+from railvib.validation.maxwell import padded
 from railvib.vehicle.assembly import Vehicle
 
 __all__ = ["FiniteCoupledSystem", "FiniteFRF", "finite_track_frf"]
@@ -208,6 +209,9 @@ class FiniteCoupledSystem:
     def time_domain_matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
         """Global real ``(M, C, K)`` (kg, N s/m, N/m), contact springs included in K.
 
+        Square of :attr:`n_dof` plus the internal DOFs of the track's generalised Maxwell
+        layers (:mod:`railvib.validation.maxwell`), which come last.
+
         Raises
         ------
         CaseError
@@ -224,7 +228,8 @@ class FiniteCoupledSystem:
         m = sp.block_diag([sp.csc_matrix(v.mass_matrix), m_t], format="csc")
         c = sp.block_diag([sp.csc_matrix(v.damping_matrix), c_t], format="csc")
         k = sp.block_diag([sp.csc_matrix(v.stiffness_matrix), k_t], format="csc")
-        return m, c, (k + self._contact_stiffness_matrix).tocsc()
+        # the track's internal DOFs (Maxwell branches of its layers) follow its own n_dof
+        return m, c, (k + padded(self._contact_stiffness_matrix, k.shape[0])).tocsc()
 
     def force_matrix(self) -> sp.csc_matrix:
         """``k_H G^T`` (n_dof, n_wheel): global force per unit irregularity at each wheel, N/m."""
@@ -367,6 +372,7 @@ def _finite_slab(
         absorber_damping=absorber_damping,
         slab_absorber_damping=absorber_damping * _slab_to_rail_mass(track),
         pad_temperature=track.pad_temperature,
+        slab_damping_time=track.slab_damping_time,
         **unit,
     )
 

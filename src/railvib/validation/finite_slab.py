@@ -31,6 +31,7 @@ from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.track.periodic import Rail
 from railvib.validation.finite_track import hermite_element_matrices
+from railvib.validation.maxwell import Branches, branch_matrices, layer_branches, padded
 from railvib.validation.scope import check_rail, viscous_layer
 
 __all__ = ["FiniteSlabTrack"]
@@ -81,6 +82,9 @@ class FiniteSlabTrack:
         the rail needs proportionally more to damp its waves as fast).
     pad_temperature : float, optional
         Temperature in degC passed to the pad, foundation and bearing models.
+    slab_damping_time : float
+        Viscous (Kelvin-Voigt) slab damping tau_s in s: ``EI_s (1 + i eta_s + i omega
+        tau_s)``, the time-domain model's stand-in for a loss factor.
     """
 
     rail: Rail
@@ -104,6 +108,7 @@ class FiniteSlabTrack:
     absorber_damping: float = 0.0
     pad_temperature: float | None = None
     slab_absorber_damping: float | None = None
+    slab_damping_time: float = 0.0
 
     def __post_init__(self) -> None:
         if self.rail.is_timoshenko:
@@ -258,11 +263,9 @@ class FiniteSlabTrack:
             if extra > 0:
                 spring("absorber", rail, None, extra)
                 spring("absorber", slab, None, extra * slab_share)
-        d, every = self.fastener_spacing, self.bearing_spacing_fasteners
-        for x in self.fasteners:
-            on_bearing = self.slab_length is not None or round(x / d) % every == 0
-            if self.bearing is not None and on_bearing:
-                spring("bearings", 2 * self._slab_node(x), None, 1.0)
+        if self.bearing is not None:
+            for dof in self._bearing_dofs():
+                spring("bearings", int(dof), None, 1.0)
         if self.joint_shear_stiffness is not None or self.joint_bending_stiffness is not None:
             for s in range(len(self.slabs) - 1):
                 end = self._slab_offsets[s] + self.slab_nodes[s].size - 1
@@ -298,7 +301,8 @@ class FiniteSlabTrack:
         out = (
             mat["k_rail"] * (1.0 + 1j * self.rail.loss_factor)
             - omega**2 * mat["mass_rail"]
-            + mat["k_slab"] * (1.0 + 1j * self.slab_loss_factor)
+            + mat["k_slab"]
+            * (1.0 + 1j * self.slab_loss_factor + 1j * omega * self.slab_damping_time)
             + (self._layer(self.foundation, f) - omega**2 * self.slab_mass_per_length)
             * mat["mass_slab"]
             + self._layer(self.pad, f) * mat["pads"]
@@ -309,43 +313,93 @@ class FiniteSlabTrack:
         return out.tocsc()
 
     def time_domain_matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
-        """Real ``(M, C, K)`` for time integration (viscous layers, no beam loss factor).
+        """Real ``(M, C, K)`` for time integration (no beam loss factor).
 
         The same DOFs and springs as :meth:`dynamic_stiffness`: the consistent Winkler
-        matrix carries the foundation's ``k_f`` and ``c_f`` per metre of slab.
+        matrix carries the foundation's ``k_f`` and ``c_f`` per metre of slab, the slab's
+        ``slab_damping_time`` times its stiffness matrix its viscous damping; a
+        generalised Maxwell pad or bearing adds one massless DOF per branch and element
+        after :attr:`n_dof` (:mod:`railvib.validation.maxwell`).
 
         Returns
         -------
         tuple of scipy.sparse.csc_matrix
-            Mass (kg), damping (N s/m) and stiffness (N/m) matrices.
+            Mass (kg), damping (N s/m) and stiffness (N/m) matrices, ``n_dof`` plus the
+            branches' DOFs square.
 
         Raises
         ------
         CaseError
             ``track.rail.loss_factor`` or ``track.slab_loss_factor`` not 0 (no hysteretic
-            beam in the time domain), or ``track.<layer>.model`` of a pad, foundation or
-            bearing that is not a spring-damper.
+            beam in the time domain), ``track.<layer>.model`` of a pad or bearing that is
+            neither a spring-damper nor a generalised Maxwell model, or of a foundation
+            that is not a spring-damper.
         """
         check_rail(self.rail, time_domain=True)
         if self.slab_loss_factor != 0.0:
             raise CaseError(
                 "track.slab_loss_factor",
                 self.slab_loss_factor,
-                "0 for the time-domain Monte Carlo: it has no hysteretic slab",
+                "0 for the time-domain Monte Carlo: it has no hysteretic slab (a viscous "
+                "slab_damping_time instead)",
             )
         mat = self._matrices
-        layers = {"pad": self.pad, "foundation": self.foundation, "bearing": self.bearing}
-        kc = {
-            name: viscous_layer(model, f"track.{name}") if model is not None else (0.0, 0.0)
-            for name, model in layers.items()
+        elements = {
+            name: layer_branches(model, f"track.{name}")
+            for name, model in (("pad", self.pad), ("bearing", self.bearing))
+            if model is not None
         }
+        foundation = (
+            viscous_layer(self.foundation, "track.foundation")
+            if self.foundation is not None
+            else (0.0, 0.0)
+        )
         m = mat["mass_rail"] + self.slab_mass_per_length * mat["mass_slab"]
         k = mat["k_rail"] + mat["k_slab"] + mat["joints"]
-        c = mat["absorber"]
-        for name, matrix in (("pad", "pads"), ("foundation", "mass_slab"), ("bearing", "bearings")):
-            k = k + kc[name][0] * mat[matrix]
-            c = c + kc[name][1] * mat[matrix]
-        return m.tocsc(), c.tocsc(), k.tocsc()
+        c = mat["absorber"] + self.slab_damping_time * mat["k_slab"]
+        parallel = {"pad": "pads", "bearing": "bearings"}
+        for name, (kc, _) in elements.items():
+            k = k + kc[0] * mat[parallel[name]]
+            c = c + kc[1] * mat[parallel[name]]
+        k = k + foundation[0] * mat["mass_slab"]
+        c = c + foundation[1] * mat["mass_slab"]
+        # the Maxwell branches of the pads and bearings: internal DOFs after the track's own
+        pads = [(int(self.rail_dof(x)[0]), 2 * self._slab_node(x)) for x in self.fasteners]
+        stack: list[tuple[NDArray[np.intp], NDArray[np.intp] | None, Branches]] = [
+            (
+                np.array([a for a, _ in pads], dtype=np.intp),
+                np.array([b for _, b in pads], dtype=np.intp),
+                elements["pad"],
+            )
+        ]
+        if self.bearing is not None:
+            stack.append((self._bearing_dofs(), None, elements["bearing"]))
+        rows: list[NDArray] = []
+        cols: list[NDArray] = []
+        k_vals: list[NDArray] = []
+        c_vals: list[NDArray] = []
+        n = self.n_dof
+        for top, bottom, branches in stack:
+            r, cc, kv, cv, added = branch_matrices(top, bottom, branches, n)
+            rows, cols, k_vals, c_vals, n = rows + r, cols + cc, k_vals + kv, c_vals + cv, n + added
+        if n == self.n_dof:
+            return m.tocsc(), c.tocsc(), k.tocsc()
+        at = (np.concatenate(rows), np.concatenate(cols))
+        k_br = sp.csc_matrix((np.concatenate(k_vals), at), shape=(n, n))
+        c_br = sp.csc_matrix((np.concatenate(c_vals), at), shape=(n, n))
+        return padded(m, n), (padded(c, n) + c_br).tocsc(), (padded(k, n) + k_br).tocsc()
+
+    def _bearing_dofs(self) -> NDArray[np.intp]:
+        """Slab DOFs on a bearing, as :attr:`_matrices` places them."""
+        d, every = self.fastener_spacing, self.bearing_spacing_fasteners
+        return np.array(
+            [
+                2 * self._slab_node(x)
+                for x in self.fasteners
+                if self.slab_length is not None or round(x / d) % every == 0
+            ],
+            dtype=np.intp,
+        )
 
     def slab_dof(self, x: ArrayLike) -> NDArray[np.intp]:
         """DOF of the slab displacement under each rail position `x` (m; slab nodes)."""

@@ -31,7 +31,8 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.track.periodic import Rail
-from railvib.validation.scope import check_pad, check_rail, viscous_layer
+from railvib.validation.maxwell import Branches, branch_matrices, layer_branches, padded
+from railvib.validation.scope import check_rail
 
 __all__ = ["FiniteTrack", "hermite_element_matrices"]
 
@@ -379,51 +380,76 @@ class FiniteTrack:
         return (diagonal + layers).tocsc()
 
     def time_domain_matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
-        """Real ``(M, C, K)`` for time integration (viscous pads and layers only).
+        """Real ``(M, C, K)`` for time integration (viscous or generalised Maxwell layers).
 
         A ballasted track's sleepers (and ballast masses) are explicit DOFs, as in
         :meth:`pad_matrix`: the pad spring-damper between each rail sleeper node and its
         sleeper of mass ``m_s``, the ballast from the sleeper to the ground (or to the
         ballast mass of ``m_b`` on the subgrade); the absorber from the rail to the ground.
+        A generalised Maxwell layer's branches add one massless DOF each per sleeper, after
+        the track's :attr:`n_dof` (:mod:`railvib.validation.maxwell`).
 
         Returns
         -------
         tuple of scipy.sparse.csc_matrix
-            Mass (kg), damping (N s/m) and stiffness (N/m) matrices.
+            Mass (kg), damping (N s/m) and stiffness (N/m) matrices, ``n_dof`` plus the
+            branches' DOFs square.
 
         Raises
         ------
         CaseError
-            If the pad, ballast or subgrade is not a spring-damper (or the two-rail
-            doubling of one) or the rail has a loss factor, which have no exact
-            time-domain counterpart here.
+            If the pad, ballast or subgrade is neither a spring-damper nor a generalised
+            Maxwell model (or the two-rail doubling of one) or the rail has a loss factor,
+            which have no exact time-domain counterpart here.
         """
-        check_pad(self.pad)
         check_rail(self.rail, time_domain=True)
-        k_pad, c_pad = viscous_layer(self.pad, "track.pad")
+        pad = layer_branches(self.pad, "track.pad")
         rail = self.sleeper_dofs
         n_sl = rail.size
         layers = sp.csc_matrix((self.n_dof, self.n_dof))
         k_lay, c_lay, m_lay = layers, layers, layers
+        # (top DOFs, bottom DOFs or None for the ground, elements) of each layer
+        stack: list[tuple[NDArray[np.intp], NDArray[np.intp] | None, Branches]] = []
         if self.ballast is None:
-            k_lay = self._sleeper_diagonal(np.full(n_sl, k_pad))
-            c_lay = self._sleeper_diagonal(np.full(n_sl, c_pad))
+            k_lay = self._sleeper_diagonal(np.full(n_sl, pad[0][0]))
+            c_lay = self._sleeper_diagonal(np.full(n_sl, pad[0][1]))
+            stack.append((rail, None, pad))
         else:
             sleeper = 2 * self.nodes.size + np.arange(n_sl)
-            chain = [(rail, sleeper, (k_pad, c_pad))]
-            ground = [(sleeper, viscous_layer(self.ballast, "track.ballast"))]
+            ballast = layer_branches(self.ballast, "track.ballast")
+            chain = [(rail, sleeper, pad[0])]
+            ground = [(sleeper, ballast[0])]
             masses = [(sleeper, self.sleeper_mass)]
+            stack += [(rail, sleeper, pad), (sleeper, None, ballast)]
             if self.subgrade is not None:
-                ballast = sleeper + n_sl
-                chain.append((sleeper, ballast, ground.pop()[1]))
-                ground.append((ballast, viscous_layer(self.subgrade, "track.subgrade")))
-                masses.append((ballast, self.ballast_mass))
+                mass = sleeper + n_sl
+                subgrade = layer_branches(self.subgrade, "track.subgrade")
+                chain.append((sleeper, mass, ground.pop()[1]))
+                ground.append((mass, subgrade[0]))
+                masses.append((mass, self.ballast_mass))
+                stack[-1] = (sleeper, mass, ballast)
+                stack.append((mass, None, subgrade))
             k_lay = self._springs(chain, ground, 0)
             c_lay = self._springs(chain, ground, 1)
             m_lay = self._springs([], [(dofs, (mass, mass)) for dofs, mass in masses], 0)
         k = self.rail_stiffness_matrix + k_lay
         c = c_lay + self._sleeper_diagonal(self.absorber_profile)
-        return (self.mass_matrix + m_lay).tocsc(), c.tocsc(), k.tocsc()
+        m = self.mass_matrix + m_lay
+        # the layers' Maxwell branches: internal DOFs after the track's own
+        rows: list[NDArray] = []
+        cols: list[NDArray] = []
+        k_vals: list[NDArray] = []
+        c_vals: list[NDArray] = []
+        n = self.n_dof
+        for top, bottom, elements in stack:
+            r, cc, kv, cv, added = branch_matrices(top, bottom, elements, n)
+            rows, cols, k_vals, c_vals, n = rows + r, cols + cc, k_vals + kv, c_vals + cv, n + added
+        if n == self.n_dof:
+            return m.tocsc(), c.tocsc(), k.tocsc()
+        at = (np.concatenate(rows), np.concatenate(cols))
+        k_br = sp.csc_matrix((np.concatenate(k_vals), at), shape=(n, n))
+        c_br = sp.csc_matrix((np.concatenate(c_vals), at), shape=(n, n))
+        return padded(m, n), (padded(c, n) + c_br).tocsc(), (padded(k, n) + k_br).tocsc()
 
     def _springs(
         self,

@@ -84,7 +84,7 @@ def agreement_markdown(result: ValidationResult, name: str) -> str:
     return (
         f"# Validation of {name}\n\n## Agreement per response\n\n{result.summary_markdown()}\n\n"
         f"## Agreement per frequency band\n\n{result.table_markdown()}\n\n"
-        f"Timings (s): {result.timings}\n\nAcceptance (issue 5): "
+        f"{_approximations(result)}Timings (s): {result.timings}\n\nAcceptance (issue 5): "
         f"{'PASSED' if result.passed else 'FAILED'}\n"
     )
 
@@ -109,7 +109,8 @@ def agreement_text(result: ValidationResult, name: str, report: str | Path | Non
     str
         Lines of at most 72 characters: per response, the finite-track maximum relative
         error (1) and the fractions of Welch bins with PEM inside the Monte Carlo band
-        (windowed and raw, %), then the verdict.
+        (windowed and raw, %), then the verdict; then one (longer) line per causal fit
+        of a hysteretic layer (``approximation: ...``).
     """
     raw = result.mc["inside_raw"].mean("frequency")
     lines = [
@@ -127,9 +128,18 @@ def agreement_text(result: ValidationResult, name: str, report: str | Path | Non
         f"Acceptance (issue 5): {verdict} (FE error <= {FRF_TOLERANCE:.0%}, PEM in band "
         f">= {BAND_FRACTION:.0%})"
     )
+    lines += [f"approximation: {note}" for note in result.approximations]
     if report is not None:
         lines.append(f"per-band tables and timings: {report}")
     return "\n".join(lines)
+
+
+def _approximations(result: ValidationResult) -> str:
+    """The report's paragraph on the causal fits all routes took (empty if none)."""
+    if not result.approximations:
+        return ""
+    lines = "".join(f"- {note}\n" for note in result.approximations)
+    return f"## Causal approximations (solved by all three routes)\n\n{lines}\n"
 
 
 def write_validation(

@@ -121,12 +121,17 @@ class ValidationResult:
     timings : dict
         Wall-clock seconds of each route (``pem_seconds``, ``finite_track_seconds``,
         ``monte_carlo_seconds``).
+    approximations : tuple of str
+        One line per layer that all three routes took as a causal fit of a hysteretic
+        one (:func:`railvib.validation.causal.causal_system`), with its error over the
+        band; empty where none was needed.
     """
 
     frf: xr.Dataset
     mc: xr.Dataset
     table: xr.Dataset
     timings: dict[str, float]
+    approximations: tuple[str, ...] = ()
 
     @property
     def max_relative_error(self) -> xr.DataArray:

@@ -2,8 +2,10 @@
 
 The finite track is an Euler-Bernoulli rail; the time-domain Monte Carlo needs,
 besides, elements with an exact time-domain form: a viscous pad ``K* = k + i omega c``
-(also as the two-rail doubling of ``rail_model = "rail_pair"``), viscous ballast,
-subgrade, slab foundation or bearings, and no rail or slab loss factor.
+or a generalised Maxwell one (also as the two-rail doubling of ``rail_model =
+"rail_pair"``), the same for ballast, subgrade or bearings, a viscous slab foundation,
+and no rail loss factor; hysteretic layers and a slab loss factor are replaced by causal
+fits before validating (:mod:`railvib.validation.causal`).
 :func:`check_scope` refuses any other case at once, naming the case-file key and the
 model the user wrote (``fractional_zener``, not the internal
 ``temperature_shifted`` wrapper of its ``[track.pad.tts]`` table).
@@ -15,11 +17,11 @@ from railvib.coupling import CoupledSystem
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.pads.scaled import ScaledPad
-from railvib.pads.simple import SpringDamper
-from railvib.pads.tts import TemperatureShifted
+from railvib.pads.simple import Hysteretic, SpringDamper
 from railvib.track.ballasted import BallastedTrack
 from railvib.track.periodic import Rail
 from railvib.track.slab import SlabTrack
+from railvib.validation.maxwell import layer_branches, pad_model_name
 
 __all__ = [
     "check_pad",
@@ -29,26 +31,6 @@ __all__ = [
     "viscous_layer",
     "viscous_pad",
 ]
-
-
-def pad_model_name(pad: PadModel) -> str:
-    """The pad model as the case file names it: ``fractional_zener (with [track.pad.tts])``.
-
-    Parameters
-    ----------
-    pad : PadModel
-        A pad as built from a case, possibly doubled (``rail_pair``) or temperature-shifted.
-
-    Returns
-    -------
-    str
-        The registered name of the model underneath the wrappers, and the TTS table if any.
-    """
-    if isinstance(pad, ScaledPad):
-        return pad_model_name(pad.base)
-    if isinstance(pad, TemperatureShifted):
-        return f"{pad_model_name(pad.base)} (with [track.pad.tts])"
-    return pad.model_name or type(pad).__name__
 
 
 def viscous_pad(pad: PadModel) -> tuple[float, float] | None:
@@ -160,6 +142,9 @@ def check_pad(pad: PadModel) -> None:
 def check_scope(system: CoupledSystem) -> None:
     """Raise at once if `system` is outside what the reference models can check.
 
+    Hysteretic pads, ballast, subgrade and bearings and a slab loss factor pass: ``railvib
+    validate`` replaces them by causal fits first (:mod:`railvib.validation.causal`).
+
     Parameters
     ----------
     system : CoupledSystem
@@ -170,26 +155,21 @@ def check_scope(system: CoupledSystem) -> None:
     CaseError
         ``track.rail.shear_stiffness`` for a Timoshenko rail, ``track.rail.loss_factor``
         for a rail loss factor, ``track.pad.model`` (the user's model name) for a pad
-        that is not viscous, and likewise ``track.ballast.model``, ``track.subgrade.model``,
-        ``track.foundation.model`` or ``track.bearing.model`` for a layer of a ballasted or
-        slab track, ``track.slab_loss_factor`` for a hysteretic slab.
+        that is neither viscous, generalised Maxwell nor hysteretic, and likewise
+        ``track.ballast.model``, ``track.subgrade.model`` or ``track.bearing.model`` for a
+        layer of a ballasted or slab track, ``track.foundation.model`` for a slab
+        foundation that is not viscous.
     """
     track = system.track
     check_rail(track.rail, time_domain=True)
-    check_pad(track.pad)
+    layers: dict[str, PadModel | None] = {"pad": track.pad}
     if isinstance(track, SlabTrack):
-        if track.slab_loss_factor != 0.0:
-            raise CaseError(
-                "track.slab_loss_factor",
-                track.slab_loss_factor,
-                "0 for railvib validate: the time-domain Monte Carlo has no hysteretic "
-                "slab (damp it through [track.foundation] or [track.bearing])",
-            )
-        layers = {"foundation": track.foundation, "bearing": track.bearing}
+        layers["bearing"] = track.bearing
+        if track.foundation is not None:
+            viscous_layer(track.foundation, "track.foundation")
     elif isinstance(track, BallastedTrack):
-        layers = {"ballast": track.ballast, "subgrade": track.subgrade}
-    else:
-        layers = {}
+        layers.update(ballast=track.ballast, subgrade=track.subgrade)
     for name, model in layers.items():
-        if model is not None:
-            viscous_layer(model, f"track.{name}")
+        base = model.base if isinstance(model, ScaledPad) else model
+        if model is not None and not isinstance(base, Hysteretic):
+            layer_branches(model, f"track.{name}")

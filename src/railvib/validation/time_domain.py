@@ -144,7 +144,7 @@ def simulate_time_domain(
     f_rows = np.flatnonzero(np.any(force != 0.0, axis=1))
     f_sub = force[f_rows]  # (n_rows, n_wheel)
 
-    n = system.n_dof
+    n = m.shape[0]  # the system's DOFs and the internal ones of Maxwell layers
     n_steps = r.shape[0] - 1
     n_real = r.shape[2]
     state = np.zeros((2 * n, n_real))  # [v; a]

@@ -105,10 +105,10 @@ def test_a_rail_pair_reports_one_rails_seat():
     np.testing.assert_allclose(single["psd_support_force"].values[:, :, 0], whole, rtol=2 * RTOL)
 
 
-def test_a_slab_track_gives_its_bearing_forces_and_a_continuous_foundation_none():
+def test_a_slab_track_gives_its_bearing_forces_or_its_foundation_bay_forces():
     # the bearings' forces come from the slab under all wheels together (checked against
     # the finite slab track in tests/validation/test_track14_slab_supports.py); a
-    # continuous foundation has no discrete supports
+    # continuous foundation's per bay (tests/validation/test_slab14b_foundation_forces.py)
     slab = build_system(case_from_dict({"preset": "floating_slab_metro"}))
     got = support_force_variables(slab, _dataset())
     assert list(got["psd_support_force"]["layer"].values) == ["pad", "bearing"]
@@ -121,7 +121,8 @@ def test_a_slab_track_gives_its_bearing_forces_and_a_continuous_foundation_none(
         foundation=Hysteretic(7e6, 0.2),
     )
     system = SimpleNamespace(track=continuous, wheel_positions=WHEELS)
-    assert support_force_variables(system, _dataset()) == {}
+    got = support_force_variables(system, _dataset())
+    assert list(got["psd_support_force"]["layer"].values) == ["foundation"]
 
 
 def test_a_run_holds_the_seat_forces_their_levels_and_a_summary_line():
