@@ -49,6 +49,7 @@ from railvib.errors import SolverWarning
 from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_transfer
 from railvib.track.compiled_cells import (
     assembled,
+    euler_span,
     loaded_cell,
     propagated,
     use_compiled_cells,
@@ -92,7 +93,8 @@ def span_stiffness(
     DOFs ``(w_a, theta_a, w_b, theta_b)`` (m, rad), end forces and moments on the span
     (N, N m). An Euler span with ``|beta L| >= CLOSED_FORM_WAVENUMBER`` uses the closed
     form (:func:`railvib.track.beam.dynamic_stiffness`); a shorter one, and every
-    Timoshenko span, inverts blocks of the pole-free transfer matrix.
+    Timoshenko span, inverts blocks of the pole-free transfer matrix. An Euler span is
+    computed by the compiled kernel where :func:`use_compiled_cells` says so.
 
     Parameters
     ----------
@@ -114,6 +116,8 @@ def span_stiffness(
         Complex dynamic stiffness, ``(n_freq, 4, 4)``.
     """
     beta4 = np.asarray(beta4, dtype=np.complex128)
+    if shear_flexibility is None and use_compiled_cells():
+        return euler_span(beta4, CLOSED_FORM_WAVENUMBER**4, length, bending_stiffness)
     scale = np.array([1.0, length, 1.0, length])
     out = np.empty(beta4.shape + (4, 4), dtype=np.complex128)
     closed = np.abs(beta4) >= CLOSED_FORM_WAVENUMBER**4
@@ -256,9 +260,6 @@ class CellWaves:
         right of a node and of those to its left.
     right_step, left_step : numpy.ndarray
         ``R`` (``q_n+1 = R q_n``) and ``L`` (``q_n-1 = L q_n``), ``(n_freq, m, m)``.
-    interior_response : numpy.ndarray
-        Interior DOFs per unit boundary displacements of an unloaded cell,
-        ``(n_freq, n_interior, 2 m)``.
     """
 
     cell: Cell
@@ -268,7 +269,6 @@ class CellWaves:
     left_chain: NDArray[np.complex128]
     right_step: NDArray[np.complex128]
     left_step: NDArray[np.complex128]
-    interior_response: NDArray[np.complex128]
 
     def propagation_constants(self) -> NDArray[np.complex128]:
         """``mu`` of the right-going waves per period, ``(n_freq, m)``, least attenuated first."""
@@ -288,7 +288,7 @@ def cell_waves(cell: Cell) -> CellWaves:
     Returns
     -------
     CellWaves
-        The chain's semi-infinite stiffnesses, wave steps and the cell's interior response.
+        The chain's semi-infinite stiffnesses and wave steps.
 
     Warns
     -----
@@ -299,25 +299,22 @@ def cell_waves(cell: Cell) -> CellWaves:
     k = cell.stiffness()
     bnd, inner = cell.boundary, cell.interior
     if use_compiled_cells():
-        *parts, response, unconverged = wave_chain(k, bnd, inner, MAX_DOUBLINGS, CONVERGED)
+        *parts, unconverged = wave_chain(k, bnd, inner, MAX_DOUBLINGS, CONVERGED)
         if np.any(unconverged):
             _warn_unconverged(int(unconverged.sum()))
         a, b, c, e, p_r, p_l, r_step, l_step = parts
-        return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step, response)
+        return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step)
     k_bb = k[:, bnd[:, None], bnd[None, :]]
     if inner.size:
         k_ib = k[:, inner[:, None], bnd[None, :]]
         k_bi = k[:, bnd[:, None], inner[None, :]]
-        response = -_solve(k[:, inner[:, None], inner[None, :]], k_ib)
-        k_bb = k_bb + k_bi @ response
-    else:
-        response = np.zeros((k.shape[0], 0, bnd.size), dtype=np.complex128)
+        k_bb = k_bb - k_bi @ _solve(k[:, inner[:, None], inner[None, :]], k_ib)
     m = bnd.size // 2
     a, b, c, e = k_bb[:, :m, :m], k_bb[:, :m, m:], k_bb[:, m:, :m], k_bb[:, m:, m:]
     p_r, p_l = _doubling(a, b, c, e)
     r_step = -_solve(e + p_r, c)
     l_step = -_solve(p_l + a, b)
-    return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step, response)
+    return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step)
 
 
 def _doubling(
@@ -369,6 +366,7 @@ def cell_receptance(
     waves: CellWaves,
     load: tuple[NDArray[np.int64], NDArray[np.intp]],
     obs: tuple[NDArray[np.int64], NDArray[np.intp]],
+    cell: Cell | None = None,
 ) -> NDArray[np.complex128]:
     """Displacement of DOFs per unit force on DOFs of the chain, ``(n_freq, n_obs, n_load)``.
 
@@ -377,30 +375,30 @@ def cell_receptance(
     waves : CellWaves
         The chain (:func:`cell_waves`).
     load, obs : (numpy.ndarray, numpy.ndarray)
-        For each load (observation point): the index of its cell and its DOF in the cell
+        For each load (observation point): the index of its cell and its DOF in `cell`
         (a DOF of the cell's left boundary stands for the cell's left node).
+    cell : Cell, optional
+        The cell the loads and observation points are nodes of: the waves' cell with
+        further nodes (its spans split there), the same boundary nodes in the same order.
+        Default: the waves' cell. The waves are best found on the cell without them
+        (fewer interior DOFs to condense), the loads placed here.
 
     Returns
     -------
     numpy.ndarray
         Complex receptance in SI units (m/N for displacement DOFs).
     """
-    cell = waves.cell
+    if cell is None or cell is waves.cell:
+        cell, k = waves.cell, waves.stiffness
+    else:
+        k = cell.stiffness()
     bnd, inner = cell.boundary, cell.interior
     m = bnd.size // 2
-    left, right = bnd[:m], bnd[m:]
     load_cell, load_dof = load
     obs_cell, obs_dof = obs
-    n_freq = waves.stiffness.shape[0]
-    if use_compiled_cells():
-        u = loaded_cell(waves.stiffness, left, right, waves.left_chain, waves.right_chain, load_dof)
-    else:
-        k = waves.stiffness.copy()
-        k[:, left[:, None], left[None, :]] += waves.left_chain
-        k[:, right[:, None], right[None, :]] += waves.right_chain
-        rhs = np.zeros((n_freq, k.shape[1], load_dof.size), dtype=np.complex128)
-        rhs[:, load_dof, np.arange(load_dof.size)] = 1.0
-        u = _solve(k, rhs)  # (n_freq, n_dof, n_load): the loaded cell with both chains
+    n_freq = k.shape[0]
+    solve = loaded_cell if use_compiled_cells() else _loaded_cell
+    u, response = solve(k, bnd, inner, waves.left_chain, waves.right_chain, load_dof)
     # each observation DOF's displacement per unit boundary displacements of its cell
     rows = np.zeros((n_freq, obs_dof.size, 2 * m), dtype=np.complex128)
     for i, dof in enumerate(obs_dof):
@@ -408,14 +406,14 @@ def cell_receptance(
         if at_bnd.size:
             rows[:, i, at_bnd[0]] = 1.0
         else:
-            rows[:, i] = waves.interior_response[:, int(np.flatnonzero(inner == dof)[0])]
+            rows[:, i] = response[:, int(np.flatnonzero(inner == dof)[0])]
     offsets = obs_cell[:, None] - load_cell[None, :]
     # boundary displacements of the cells n = 1, 2, ... to the right of the loaded one
     # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end)
     steps = int(max(offsets.max(initial=0), 0)), int(max(-offsets.min(initial=0), 0))
     chain = propagated if use_compiled_cells() else _propagate
-    right_q = chain(waves.right_step, u[:, right, :], steps[0])
-    left_q = chain(waves.left_step, u[:, left, :], steps[1])
+    right_q = chain(waves.right_step, u[:, bnd[m:], :], steps[0])
+    left_q = chain(waves.left_step, u[:, bnd[:m], :], steps[1])
     out = np.empty((n_freq, obs_dof.size, load_dof.size), dtype=np.complex128)
     for i in range(obs_dof.size):
         for j in range(load_dof.size):
@@ -429,6 +427,46 @@ def cell_receptance(
                 q = np.concatenate([left_q[-n][:, :, j], left_q[-n - 1][:, :, j]], axis=1)
             out[:, i, j] = np.einsum("fa,fa->f", rows[:, i], q)
     return out
+
+
+def _loaded_cell(
+    k: NDArray[np.complex128],
+    bnd: NDArray[np.intp],
+    inner: NDArray[np.intp],
+    p_l: NDArray[np.complex128],
+    p_r: NDArray[np.complex128],
+    load_dof: NDArray[np.intp],
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """The loaded cell with both chains, and the interior's response to its boundary.
+
+    The interior DOFs are condensed onto the boundary with the loads on them (one solve
+    for ``K_ii^-1 [K_ib, f_i]``), the boundary solved with the chains ``P_l``, ``P_r``
+    added, and the interior recovered. Returns the DOFs per unit load ``(n_freq, n_dof,
+    n_load)`` and the interior DOFs per unit boundary displacements of an unloaded cell
+    ``(n_freq, n_interior, 2 m)``.
+    """
+    n_freq, n_dof = k.shape[:2]
+    m = bnd.size // 2
+    unit = np.zeros((n_freq, n_dof, load_dof.size), dtype=np.complex128)
+    unit[:, load_dof, np.arange(load_dof.size)] = 1.0
+    k_bb = k[:, bnd[:, None], bnd[None, :]]
+    k_bb[:, :m, :m] += p_l
+    k_bb[:, m:, m:] += p_r
+    f_b = unit[:, bnd]
+    u = np.empty_like(unit)
+    if not inner.size:
+        u[:, bnd] = _solve(k_bb, f_b)
+        return u, np.zeros((n_freq, 0, bnd.size), dtype=np.complex128)
+    k_bi = k[:, bnd[:, None], inner[None, :]]
+    x = _solve(
+        k[:, inner[:, None], inner[None, :]],
+        np.concatenate([k[:, inner[:, None], bnd[None, :]], unit[:, inner]], axis=2),
+    )
+    x_b, x_f = x[:, :, : bnd.size], x[:, :, bnd.size :]
+    u_b = _solve(k_bb - k_bi @ x_b, f_b - k_bi @ x_f)
+    u[:, bnd] = u_b
+    u[:, inner] = x_f - x_b @ u_b
+    return u, -x_b
 
 
 def _propagate(

@@ -17,6 +17,7 @@ never imports numba itself. ``RAILVIB_COMPILED=0`` keeps everything on NumPy.
 
 from __future__ import annotations
 
+import math
 import os
 from typing import Any
 
@@ -29,6 +30,7 @@ from railvib.track import compiled
 __all__ = [
     "assembled",
     "cell_kernel",
+    "euler_span",
     "loaded_cell",
     "propagated",
     "use_compiled_cells",
@@ -36,6 +38,12 @@ __all__ = [
 ]
 
 _CELL_KERNEL: list[Any] = []
+
+#: ``1 / (4k + j)!`` for ``k < 16``, ``j < 4``: the Krylov series' coefficients (a series
+#: span has ``|beta L| < 2``, and 10 terms at most)
+_INVERSE_FACTORIALS = np.array(
+    [[1.0 / math.factorial(4 * k + j) for j in range(4)] for k in range(16)]
+)
 
 #: the point functions compiled, helpers first (each calls only those before it)
 _FUNCTIONS = (
@@ -46,6 +54,7 @@ _FUNCTIONS = (
     "_loaded_points",
     "_propagate_points",
     "_assemble_points",
+    "_span_points",
 )
 
 
@@ -105,14 +114,12 @@ def wave_chain(
     Returns
     -------
     tuple of numpy.ndarray
-        ``(A, B, C, E, P_r, P_l, R, L, response, unconverged)``: blocks ``(n_freq, m, m)``,
-        the interior response ``(n_freq, n_interior, 2 m)`` and a bool ``(n_freq,)`` of
-        the frequencies the doubling did not converge at.
+        ``(A, B, C, E, P_r, P_l, R, L, unconverged)``: blocks ``(n_freq, m, m)`` and a bool
+        ``(n_freq,)`` of the frequencies the doubling did not converge at.
     """
     n_freq = k.shape[0]
     m = bnd.size // 2
     blocks = np.empty((8, n_freq, m, m), dtype=np.complex128)
-    response = np.empty((n_freq, inner.size, bnd.size), dtype=np.complex128)
     unconverged = np.zeros(n_freq, dtype=np.bool_)
     cell_kernel()[0](
         np.ascontiguousarray(k),
@@ -121,28 +128,30 @@ def wave_chain(
         int(max_doublings),
         float(converged),
         blocks,
-        response,
         unconverged,
     )
-    return (*blocks, response, unconverged)
+    return (*blocks, unconverged)
 
 
 def loaded_cell(
     k: NDArray[np.complex128],
-    left: NDArray[np.intp],
-    right: NDArray[np.intp],
+    bnd: NDArray[np.intp],
+    inner: NDArray[np.intp],
     p_l: NDArray[np.complex128],
     p_r: NDArray[np.complex128],
     load_dof: NDArray[np.intp],
-) -> NDArray[np.complex128]:
-    """DOFs of the loaded cell with both chains attached per unit load, ``(n_freq, n_dof, n_load)``.
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """The loaded cell with both chains, and its interior's response to its boundary.
+
+    As :func:`railvib.track.cells._loaded_cell`: the interior condensed with the loads on
+    it, the boundary solved with the chains, the interior recovered.
 
     Parameters
     ----------
     k : numpy.ndarray
         Assembled cell stiffness, ``(n_freq, n_dof, n_dof)``, SI units.
-    left, right : numpy.ndarray
-        The boundary DOFs of each side (``m`` each).
+    bnd, inner : numpy.ndarray
+        Boundary DOFs (left then right, ``2 m``) and interior DOFs (indices, dimensionless).
     p_l, p_r : numpy.ndarray
         The chains to the left and to the right, ``(n_freq, m, m)``.
     load_dof : numpy.ndarray
@@ -150,20 +159,25 @@ def loaded_cell(
 
     Returns
     -------
-    numpy.ndarray
-        Complex displacements in m/N, ``(n_freq, n_dof, n_load)``.
+    tuple of numpy.ndarray
+        The DOFs per unit load in m/N, ``(n_freq, n_dof, n_load)``, and the interior DOFs
+        per unit boundary displacements of an unloaded cell ``(n_freq, n_interior, 2 m)``
+        (dimensionless for displacements).
     """
-    out = np.empty((k.shape[0], k.shape[1], load_dof.size), dtype=np.complex128)
+    n_freq, n_dof = k.shape[:2]
+    out = np.empty((n_freq, n_dof, load_dof.size), dtype=np.complex128)
+    response = np.empty((n_freq, inner.size, bnd.size), dtype=np.complex128)
     cell_kernel()[1](
         np.ascontiguousarray(k),
-        left.astype(np.int64),
-        right.astype(np.int64),
+        bnd.astype(np.int64),
+        inner.astype(np.int64),
         np.ascontiguousarray(p_l),
         np.ascontiguousarray(p_r),
         load_dof.astype(np.int64),
         out,
+        response,
     )
-    return out
+    return out, response
 
 
 def assembled(
@@ -220,6 +234,41 @@ def propagated(
     out = np.empty((n + 1,) + q.shape, dtype=np.complex128)
     out[0] = q
     cell_kernel()[2](np.ascontiguousarray(step), int(n), out)
+    return out
+
+
+def euler_span(
+    beta4: NDArray[np.complex128], closed_from: float, length: float, bending_stiffness: complex
+) -> NDArray[np.complex128]:
+    """An Euler span's exact dynamic stiffness (as :func:`railvib.track.cells.span_stiffness`).
+
+    Parameters
+    ----------
+    beta4 : numpy.ndarray
+        ``(m omega^2 - k_f) L^4 / EI*`` per frequency (dimensionless), ``(n_freq,)``.
+    closed_from : float
+        ``|beta4|`` from which the closed form is used (dimensionless); below it, the
+        Krylov series of the transfer matrix.
+    length : float
+        Span length L in m.
+    bending_stiffness : complex
+        ``EI*`` in N m^2.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n_freq, 4, 4)``, complex, SI units.
+    """
+    beta4 = np.ascontiguousarray(beta4, dtype=np.complex128)
+    out = np.empty(beta4.shape + (4, 4), dtype=np.complex128)
+    cell_kernel()[4](
+        beta4,
+        float(closed_from),
+        float(length),
+        complex(bending_stiffness),
+        _INVERSE_FACTORIALS,
+        out,
+    )
     return out
 
 
@@ -310,7 +359,6 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
     max_doublings: int,
     converged: float,
     blocks: Any,
-    response: Any,
     unconverged: Any,
 ) -> None:
     """Condensation, doubling and wave steps of each frequency (:func:`wave_chain`)."""
@@ -339,9 +387,6 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
                 x[i, j] = k[f, inner[i], bnd[j]]
         if ni:
             _eq_solve(kii, x, scratch, hi)
-        for i in range(ni):
-            for j in range(nb):
-                response[f, i, j] = -x[i, j]
         for i in range(nb):
             for j in range(nb):
                 v = k[f, bnd[i], bnd[j]]
@@ -425,30 +470,58 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
                     blocks[6 + side, f, i, j] = -z[i, j]
 
 
-def _loaded_points(k: Any, left: Any, right: Any, p_l: Any, p_r: Any, load: Any, out: Any) -> None:
+def _loaded_points(  # noqa: PLR0912 - one loop body per frequency
+    k: Any, bnd: Any, inner: Any, p_l: Any, p_r: Any, load: Any, out: Any, response: Any
+) -> None:
     """The loaded cell with both chains, per unit load (:func:`loaded_cell`)."""
     n_freq = k.shape[0]
-    n = k.shape[1]
-    m = left.size
-    a = np.empty((n, n), dtype=np.complex128)
-    rhs = np.empty((n, load.size), dtype=np.complex128)
-    scratch = np.empty(n)
-    hi = np.empty(n, dtype=np.int64)
+    nb = bnd.size
+    ni = inner.size
+    nl = load.size
+    m = nb // 2
+    kii = np.empty((ni, ni), dtype=np.complex128)
+    x = np.empty((ni, nb + nl), dtype=np.complex128)
+    s = np.empty((nb, nb), dtype=np.complex128)
+    rhs = np.empty((nb, nl), dtype=np.complex128)
+    scratch = np.empty(max(ni, nb))
+    hi = np.empty(max(ni, nb), dtype=np.int64)
     for f in range(n_freq):
-        for i in range(n):
-            for j in range(n):
-                a[i, j] = k[f, i, j]
+        for i in range(ni):
+            for j in range(ni):
+                kii[i, j] = k[f, inner[i], inner[j]]
+            for j in range(nb):
+                x[i, j] = k[f, inner[i], bnd[j]]
+            for q in range(nl):
+                x[i, nb + q] = 1.0 if inner[i] == load[q] else 0.0
+        if ni:
+            _eq_solve(kii, x, scratch, hi)
+        for i in range(nb):  # the condensed boundary, the loads on it, the chains
+            for j in range(nb):
+                v = k[f, bnd[i], bnd[j]]
+                for q in range(ni):
+                    v -= k[f, bnd[i], inner[q]] * x[q, j]
+                s[i, j] = v
+            for j in range(nl):
+                v = 1.0 + 0.0j if bnd[i] == load[j] else 0.0j
+                for q in range(ni):
+                    v -= k[f, bnd[i], inner[q]] * x[q, nb + j]
+                rhs[i, j] = v
         for i in range(m):
             for j in range(m):
-                a[left[i], left[j]] += p_l[f, i, j]
-                a[right[i], right[j]] += p_r[f, i, j]
-        rhs[:] = 0.0
-        for q in range(load.size):
-            rhs[load[q], q] = 1.0
-        _eq_solve(a, rhs, scratch, hi)
-        for i in range(n):
-            for q in range(load.size):
-                out[f, i, q] = rhs[i, q]
+                s[i, j] += p_l[f, i, j]
+                s[m + i, m + j] += p_r[f, i, j]
+        _eq_solve(s, rhs, scratch, hi)
+        for i in range(nb):
+            for q in range(nl):
+                out[f, bnd[i], q] = rhs[i, q]
+        for i in range(ni):
+            for j in range(nb):
+                response[f, i, j] = -x[i, j]
+            for q in range(nl):
+                v = x[i, nb + q]
+                for j in range(nb):
+                    v -= x[i, j] * rhs[j, q]
+                out[f, inner[i], q] = v
 
 
 def _propagate_points(step: Any, n: int, out: Any) -> None:
@@ -484,6 +557,77 @@ def _assemble_points(
                 out[f, j, j] += v
                 out[f, i, j] -= v
                 out[f, j, i] -= v
+
+
+def _span_points(  # noqa: PLR0915 - one loop body per frequency
+    beta4: Any, closed_from: float, length: float, ei: complex, coeff: Any, out: Any
+) -> None:
+    """Dimensionless span stiffness of each frequency, scaled to SI (:func:`euler_span`).
+
+    The closed form of :func:`railvib.track.beam.dynamic_stiffness` where ``|beta4| >=
+    closed_from``, else :func:`railvib.track.cells._stiffness_from_transfer` of the
+    Krylov series :func:`railvib.track.beam.krylov_series`, whose number of terms is taken
+    from the largest ``|beta4|`` of the series frequencies, as there.
+    """
+    top = 0.0
+    for f in range(beta4.size):
+        v = abs(beta4[f])
+        if v < closed_from and v > top:
+            top = v
+    n_terms = max(6, math.ceil((2.72 * top**0.25 + 34.0) / 4.0))
+    factor = ei / length**3
+    scale = np.array([1.0, length, 1.0, length])
+    perm = np.array([0, 1, 3, 2])
+    sign = np.array([1.0, 1.0, 1.0, -1.0])
+    acc = np.empty(4, dtype=np.complex128)
+    t = np.empty((4, 4), dtype=np.complex128)
+    s = np.empty((4, 4), dtype=np.complex128)
+    k = np.empty((4, 4), dtype=np.complex128)
+    for f in range(beta4.size):
+        b4 = beta4[f]
+        if abs(b4) >= closed_from:  # the closed form, D = 1 - cos cosh
+            b = b4**0.25
+            c, sn = np.cos(b), np.sin(b)
+            ch, sh = np.cosh(b), np.sinh(b)
+            d = 1.0 - c * ch
+            b2 = b * b
+            k11 = b2 * b * (c * sh + sn * ch) / d
+            k12 = b2 * sn * sh / d
+            k13 = -(b2 * b) * (sh + sn) / d
+            k14 = b2 * (ch - c) / d
+            k22 = b * (sn * ch - c * sh) / d
+            k24 = b * (sh - sn) / d
+            k[0, 0], k[0, 1], k[0, 2], k[0, 3] = k11, k12, k13, k14
+            k[1, 0], k[1, 1], k[1, 2], k[1, 3] = k12, k22, -k14, k24
+            k[2, 0], k[2, 1], k[2, 2], k[2, 3] = k13, -k14, k11, -k12
+            k[3, 0], k[3, 1], k[3, 2], k[3, 3] = k14, k24, -k12, k22
+        else:  # the series transfer matrix, its blocks inverted
+            for j in range(4):
+                acc[j] = 0.0
+            for q in range(n_terms - 1, -1, -1):  # Horner in beta4 for the four sums
+                for j in range(4):
+                    acc[j] = acc[j] * b4 + coeff[q, j]
+            for r in range(4):
+                for col in range(4):
+                    t[r, col] = acc[col - r] if col >= r else b4 * acc[col - r + 4]
+            for i in range(4):
+                for j in range(4):
+                    s[i, j] = t[perm[i], perm[j]] * (sign[i] * sign[j])
+            det = s[0, 2] * s[1, 3] - s[0, 3] * s[1, 2]
+            k[0, 2] = s[1, 3] / det  # k_ab = s_ab^-1
+            k[0, 3] = -s[0, 3] / det
+            k[1, 2] = -s[1, 2] / det
+            k[1, 3] = s[0, 2] / det
+            for i in range(2):
+                for j in range(2):
+                    k[i, j] = -(k[i, 2] * s[0, j] + k[i, 3] * s[1, j])  # -k_ab s_aa
+                    k[2 + i, 2 + j] = -(s[2 + i, 2] * k[0, 2 + j] + s[2 + i, 3] * k[1, 2 + j])
+            for i in range(2):
+                for j in range(2):  # k_ba = -s_ba - k_bb s_aa
+                    k[2 + i, j] = -s[2 + i, j] - (k[2 + i, 2] * s[0, j] + k[2 + i, 3] * s[1, j])
+        for i in range(4):
+            for j in range(4):
+                out[f, i, j] = k[i, j] * (scale[i] * scale[j]) * factor
 
 
 #: the plain Python functions (the kernel before compilation: the same numbers, slowly)
