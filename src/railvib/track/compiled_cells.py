@@ -399,49 +399,52 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
                 blocks[1, f, i, j] = kbb[i, m + j]
                 blocks[2, f, i, j] = kbb[m + i, j]
                 blocks[3, f, i, j] = kbb[m + i, m + j]
-        # the doubling, equilibrated by the boundary DOFs' diagonal of A + E
+        # the doubling, equilibrated by the boundary DOFs' diagonal of A + E; a cell is
+        # reciprocal (C = B^T, A and E symmetric), so each step is A' = A - B S^-1 B^T,
+        # E' = E - B^T S^-1 B (their upper triangles) and B' = -B S^-1 B: three products
         for i in range(m):
             s[i] = 1.0 / np.sqrt(abs(kbb[i, i] + kbb[m + i, m + i]))
         for i in range(m):
             for j in range(m):
                 w = s[i] * s[j]
-                a[i, j] = kbb[i, j] * w
+                a[i, j] = 0.5 * (kbb[i, j] + kbb[j, i]) * w
                 b[i, j] = kbb[i, m + j] * w
-                c[i, j] = kbb[m + i, j] * w
-                e[i, j] = kbb[m + i, m + j] * w
+                e[i, j] = 0.5 * (kbb[m + i, m + j] + kbb[m + j, m + i]) * w
         done = False
         for _ in range(max_doublings):
             for i in range(m):
                 for j in range(m):
                     sm[i, j] = e[i, j] + a[i, j]
-                    y[i, j] = c[i, j]
+                    y[i, j] = b[j, i]
                     y[i, m + j] = b[i, j]
-            _lu_solve(sm, y, hi)
+            _lu_solve(sm, y, hi)  # y = S^-1 [B^T, B]
             size = 0.0
             coupling = 0.0
-            for i in range(m):  # new blocks into sm (A), kbb's first rows as scratch
+            for i in range(m):  # the new B into c (scratch), A and E in place
                 for j in range(m):
+                    vb = 0.0j
+                    for q in range(m):
+                        vb -= b[i, q] * y[q, m + j]
+                    c[i, j] = vb
+                    coupling = max(coupling, _abs2(vb))
+            for i in range(m):
+                for j in range(i, m):
                     va = a[i, j]
                     ve = e[i, j]
-                    vb = 0.0j
-                    vc = 0.0j
                     for q in range(m):
                         va -= b[i, q] * y[q, j]
-                        ve -= c[i, q] * y[q, m + j]
-                        vb -= b[i, q] * y[q, m + j]
-                        vc -= c[i, q] * y[q, j]
+                        ve -= b[q, i] * y[q, m + j]
                     sm[i, j] = va
-                    kbb[i, j] = ve
-                    kbb[i, m + j] = vb
-                    kbb[m + i, j] = vc
-            for i in range(m):  # the largest squared magnitudes (no square roots)
-                for j in range(m):
+                    z[i, j] = ve
+            for i in range(m):
+                for j in range(i, m):
                     a[i, j] = sm[i, j]
-                    e[i, j] = kbb[i, j]
-                    b[i, j] = kbb[i, m + j]
-                    c[i, j] = kbb[m + i, j]
-                    size = max(size, _abs2(a[i, j]), _abs2(e[i, j]))
-                    coupling = max(coupling, _abs2(b[i, j]), _abs2(c[i, j]))
+                    a[j, i] = sm[i, j]
+                    e[i, j] = z[i, j]
+                    e[j, i] = z[i, j]
+                    size = max(size, _abs2(sm[i, j]), _abs2(z[i, j]))
+                for j in range(m):
+                    b[i, j] = c[i, j]
             if coupling <= converged**2 * size:
                 done = True
                 break
