@@ -50,7 +50,7 @@ from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_tra
 from railvib.track.compiled_cells import (
     assembled,
     euler_span,
-    loaded_cell,
+    loaded_points,
     propagated,
     use_compiled_cells,
     wave_chain,
@@ -397,76 +397,111 @@ def cell_receptance(
     load_cell, load_dof = load
     obs_cell, obs_dof = obs
     n_freq = k.shape[0]
-    solve = loaded_cell if use_compiled_cells() else _loaded_cell
-    u, response = solve(k, bnd, inner, waves.left_chain, waves.right_chain, load_dof)
-    # each observation DOF's displacement per unit boundary displacements of its cell
-    rows = np.zeros((n_freq, obs_dof.size, 2 * m), dtype=np.complex128)
-    for i, dof in enumerate(obs_dof):
-        at_bnd = np.flatnonzero(bnd == dof)
-        if at_bnd.size:
-            rows[:, i, at_bnd[0]] = 1.0
-        else:
-            rows[:, i] = response[:, int(np.flatnonzero(inner == dof)[0])]
+    a, b, c, e = waves.blocks
+    condensed = np.concatenate(
+        [
+            np.concatenate([a + waves.left_chain, b], axis=2),
+            np.concatenate([c, e + waves.right_chain], axis=2),
+        ],
+        axis=1,
+    )
+    where = _where(bnd, inner, load_dof, obs_dof)
+    solve = loaded_points if use_compiled_cells() else _loaded_points
+    u, u_b, rows = solve(k, bnd, inner, condensed, *where)
     offsets = obs_cell[:, None] - load_cell[None, :]
     # boundary displacements of the cells n = 1, 2, ... to the right of the loaded one
-    # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end)
-    steps = int(max(offsets.max(initial=0), 0)), int(max(-offsets.min(initial=0), 0))
+    # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end),
+    # as far as each load's farthest observed cell
     chain = propagated if use_compiled_cells() else _propagate
-    right_q = chain(waves.right_step, u[:, bnd[m:], :], steps[0])
-    left_q = chain(waves.left_step, u[:, bnd[:m], :], steps[1])
     out = np.empty((n_freq, obs_dof.size, load_dof.size), dtype=np.complex128)
-    for i in range(obs_dof.size):
-        for j in range(load_dof.size):
+    for j in range(load_dof.size):
+        steps = int(max(offsets[:, j].max(), 0)), int(max(-offsets[:, j].min(), 0))
+        right_q = chain(waves.right_step, u_b[:, m:, j : j + 1], steps[0])
+        left_q = chain(waves.left_step, u_b[:, :m, j : j + 1], steps[1])
+        for i in range(obs_dof.size):
             n = int(offsets[i, j])
             if n == 0:
-                out[:, i, j] = u[:, obs_dof[i], j]
+                out[:, i, j] = u[:, i, j]
                 continue
             if n > 0:  # the observed cell's ends: n - 1 and n steps from the loaded cell's
-                q = np.concatenate([right_q[n - 1][:, :, j], right_q[n][:, :, j]], axis=1)
+                q = np.concatenate([right_q[n - 1][:, :, 0], right_q[n][:, :, 0]], axis=1)
             else:
-                q = np.concatenate([left_q[-n][:, :, j], left_q[-n - 1][:, :, j]], axis=1)
+                q = np.concatenate([left_q[-n][:, :, 0], left_q[-n - 1][:, :, 0]], axis=1)
             out[:, i, j] = np.einsum("fa,fa->f", rows[:, i], q)
     return out
 
 
-def _loaded_cell(
+def _where(
+    bnd: NDArray[np.intp],
+    inner: NDArray[np.intp],
+    load_dof: NDArray[np.intp],
+    obs_dof: NDArray[np.intp],
+) -> tuple[NDArray[np.int64], ...]:
+    """Where the loads' and observation points' DOFs are in the cell.
+
+    Returns ``(points, load_b, load_p, obs_b, obs_p)``: the interior DOFs that are a load
+    or an observation point (their indices in `inner`), and for each load and observation
+    point its index in `bnd` and in ``points`` (-1 where it is not one).
+    """
+    in_bnd = {int(d): i for i, d in enumerate(bnd)}
+    in_inner = {int(d): i for i, d in enumerate(inner)}
+    points = sorted({in_inner[int(d)] for d in (*load_dof, *obs_dof) if int(d) in in_inner})
+    in_points = {i: p for p, i in enumerate(points)}
+
+    def place(dofs: NDArray[np.intp]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        at_b = [in_bnd.get(int(d), -1) for d in dofs]
+        at_p = [in_points.get(in_inner.get(int(d), -1), -1) for d in dofs]
+        return np.array(at_b, dtype=np.int64), np.array(at_p, dtype=np.int64)
+
+    return (np.array(points, dtype=np.int64), *place(load_dof), *place(obs_dof))
+
+
+def _loaded_points(
     k: NDArray[np.complex128],
     bnd: NDArray[np.intp],
     inner: NDArray[np.intp],
-    p_l: NDArray[np.complex128],
-    p_r: NDArray[np.complex128],
-    load_dof: NDArray[np.intp],
-) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """The loaded cell with both chains, and the interior's response to its boundary.
+    condensed: NDArray[np.complex128],
+    points: NDArray[np.int64],
+    load_b: NDArray[np.int64],
+    load_p: NDArray[np.int64],
+    obs_b: NDArray[np.int64],
+    obs_p: NDArray[np.int64],
+) -> tuple[NDArray[np.complex128], ...]:
+    """The loaded cell with both chains, solved at its load and observation points only.
 
-    The interior DOFs are condensed onto the boundary with the loads on them (one solve
-    for ``K_ii^-1 [K_ib, f_i]``), the boundary solved with the chains ``P_l``, ``P_r``
-    added, and the interior recovered. Returns the DOFs per unit load ``(n_freq, n_dof,
-    n_load)`` and the interior DOFs per unit boundary displacements of an unloaded cell
-    ``(n_freq, n_interior, 2 m)``.
+    With ``X = K_ii^-1`` at the interior points (one solve, a column per point), a point's
+    row of the interior response to the boundary is ``-X^T K_ib`` (``K_ii`` is symmetric),
+    an interior load's boundary load is the transpose of its row, the boundary is solved
+    with the condensed cell and the chains (`condensed`, ``(n_freq, 2 m, 2 m)``), and an
+    observation point's displacement is its row times the boundary's plus ``X`` between
+    it and an interior load. Returns the points' DOFs per unit load ``(n_freq, n_obs,
+    n_load)``, the boundary's ``(n_freq, 2 m, n_load)`` and the observation points' rows
+    ``(n_freq, n_obs, 2 m)``.
     """
-    n_freq, n_dof = k.shape[:2]
-    m = bnd.size // 2
-    unit = np.zeros((n_freq, n_dof, load_dof.size), dtype=np.complex128)
-    unit[:, load_dof, np.arange(load_dof.size)] = 1.0
-    k_bb = k[:, bnd[:, None], bnd[None, :]]
-    k_bb[:, :m, :m] += p_l
-    k_bb[:, m:, m:] += p_r
-    f_b = unit[:, bnd]
-    u = np.empty_like(unit)
-    if not inner.size:
-        u[:, bnd] = _solve(k_bb, f_b)
-        return u, np.zeros((n_freq, 0, bnd.size), dtype=np.complex128)
-    k_bi = k[:, bnd[:, None], inner[None, :]]
-    x = _solve(
-        k[:, inner[:, None], inner[None, :]],
-        np.concatenate([k[:, inner[:, None], bnd[None, :]], unit[:, inner]], axis=2),
-    )
-    x_b, x_f = x[:, :, : bnd.size], x[:, :, bnd.size :]
-    u_b = _solve(k_bb - k_bi @ x_b, f_b - k_bi @ x_f)
-    u[:, bnd] = u_b
-    u[:, inner] = x_f - x_b @ u_b
-    return u, -x_b
+    n_freq = k.shape[0]
+    unit_b = np.eye(bnd.size, dtype=np.complex128)
+    x = np.zeros((n_freq, inner.size, points.size), dtype=np.complex128)
+    rows_p = np.zeros((n_freq, points.size, bnd.size), dtype=np.complex128)
+    if points.size:
+        unit = np.zeros((n_freq, inner.size, points.size), dtype=np.complex128)
+        unit[:, points, np.arange(points.size)] = 1.0
+        x = _solve(k[:, inner[:, None], inner[None, :]], unit)
+        rows_p = -np.einsum("fip,fib->fpb", x, k[:, inner[:, None], bnd[None, :]])
+
+    def rows(at_b: NDArray[np.int64], at_p: NDArray[np.int64]) -> NDArray[np.complex128]:
+        out = np.empty((n_freq, at_b.size, bnd.size), dtype=np.complex128)
+        for i, (ib, ip) in enumerate(zip(at_b, at_p, strict=True)):
+            out[:, i] = unit_b[ib] if ib >= 0 else rows_p[:, ip]
+        return out
+
+    rows_obs = rows(obs_b, obs_p)
+    u_b = _solve(condensed, rows(load_b, load_p).transpose(0, 2, 1))
+    u = rows_obs @ u_b
+    for i, ip in enumerate(obs_p):
+        for j, jp in enumerate(load_p):
+            if ip >= 0 and jp >= 0:
+                u[:, i, j] += x[:, points[ip], jp]
+    return u, u_b, rows_obs
 
 
 def _propagate(

@@ -31,7 +31,7 @@ __all__ = [
     "assembled",
     "cell_kernel",
     "euler_span",
-    "loaded_cell",
+    "loaded_points",
     "propagated",
     "use_compiled_cells",
     "wave_chain",
@@ -133,18 +133,18 @@ def wave_chain(
     return (*blocks, unconverged)
 
 
-def loaded_cell(
+def loaded_points(
     k: NDArray[np.complex128],
     bnd: NDArray[np.intp],
     inner: NDArray[np.intp],
-    p_l: NDArray[np.complex128],
-    p_r: NDArray[np.complex128],
-    load_dof: NDArray[np.intp],
-) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """The loaded cell with both chains, and its interior's response to its boundary.
-
-    As :func:`railvib.track.cells._loaded_cell`: the interior condensed with the loads on
-    it, the boundary solved with the chains, the interior recovered.
+    condensed: NDArray[np.complex128],
+    points: NDArray[np.int64],
+    load_b: NDArray[np.int64],
+    load_p: NDArray[np.int64],
+    obs_b: NDArray[np.int64],
+    obs_p: NDArray[np.int64],
+) -> tuple[NDArray[np.complex128], ...]:
+    """The loaded cell at its load and observation points (as ``cells._loaded_points``).
 
     Parameters
     ----------
@@ -152,32 +152,42 @@ def loaded_cell(
         Assembled cell stiffness, ``(n_freq, n_dof, n_dof)``, SI units.
     bnd, inner : numpy.ndarray
         Boundary DOFs (left then right, ``2 m``) and interior DOFs (indices, dimensionless).
-    p_l, p_r : numpy.ndarray
-        The chains to the left and to the right, ``(n_freq, m, m)``.
-    load_dof : numpy.ndarray
-        The DOF of each unit load.
+    condensed : numpy.ndarray
+        The condensed cell with both chains added, ``(n_freq, 2 m, 2 m)``, SI units.
+    points : numpy.ndarray
+        The interior DOFs that are a load or an observation point (indices in `inner`,
+        dimensionless).
+    load_b, load_p, obs_b, obs_p : numpy.ndarray
+        Each load's and observation point's index in `bnd` and in `points` (dimensionless;
+        -1: none).
 
     Returns
     -------
     tuple of numpy.ndarray
-        The DOFs per unit load in m/N, ``(n_freq, n_dof, n_load)``, and the interior DOFs
-        per unit boundary displacements of an unloaded cell ``(n_freq, n_interior, 2 m)``
-        (dimensionless for displacements).
+        The observation points' DOFs per unit load ``(n_freq, n_obs, n_load)`` and the
+        boundary's ``(n_freq, 2 m, n_load)`` in m/N, and the observation points' rows of
+        the interior response to the boundary ``(n_freq, n_obs, 2 m)`` (dimensionless for
+        displacements).
     """
-    n_freq, n_dof = k.shape[:2]
-    out = np.empty((n_freq, n_dof, load_dof.size), dtype=np.complex128)
-    response = np.empty((n_freq, inner.size, bnd.size), dtype=np.complex128)
+    n_freq = k.shape[0]
+    u = np.empty((n_freq, obs_b.size, load_b.size), dtype=np.complex128)
+    u_b = np.empty((n_freq, bnd.size, load_b.size), dtype=np.complex128)
+    rows = np.empty((n_freq, obs_b.size, bnd.size), dtype=np.complex128)
     cell_kernel()[1](
         np.ascontiguousarray(k),
         bnd.astype(np.int64),
         inner.astype(np.int64),
-        np.ascontiguousarray(p_l),
-        np.ascontiguousarray(p_r),
-        load_dof.astype(np.int64),
-        out,
-        response,
+        np.ascontiguousarray(condensed),
+        points,
+        load_b,
+        load_p,
+        obs_b,
+        obs_p,
+        u,
+        u_b,
+        rows,
     )
-    return out, response
+    return u, u_b, rows
 
 
 def assembled(
@@ -473,58 +483,72 @@ def _waves_points(  # noqa: C901, PLR0912, PLR0915 - one loop body per frequency
                     blocks[6 + side, f, i, j] = -z[i, j]
 
 
-def _loaded_points(  # noqa: PLR0912 - one loop body per frequency
-    k: Any, bnd: Any, inner: Any, p_l: Any, p_r: Any, load: Any, out: Any, response: Any
+def _loaded_points(  # noqa: C901, PLR0912, PLR0913 - one loop body per frequency
+    k: Any,
+    bnd: Any,
+    inner: Any,
+    condensed: Any,
+    points: Any,
+    load_b: Any,
+    load_p: Any,
+    obs_b: Any,
+    obs_p: Any,
+    u: Any,
+    u_b: Any,
+    rows: Any,
 ) -> None:
-    """The loaded cell with both chains, per unit load (:func:`loaded_cell`)."""
+    """The loaded cell at its points, frequency by frequency (:func:`loaded_points`)."""
     n_freq = k.shape[0]
     nb = bnd.size
     ni = inner.size
-    nl = load.size
-    m = nb // 2
+    n_p = points.size
+    nl = load_b.size
     kii = np.empty((ni, ni), dtype=np.complex128)
-    x = np.empty((ni, nb + nl), dtype=np.complex128)
+    x = np.empty((ni, n_p), dtype=np.complex128)
+    rp = np.empty((n_p, nb), dtype=np.complex128)
     s = np.empty((nb, nb), dtype=np.complex128)
     rhs = np.empty((nb, nl), dtype=np.complex128)
     scratch = np.empty(max(ni, nb))
     hi = np.empty(max(ni, nb), dtype=np.int64)
     for f in range(n_freq):
-        for i in range(ni):
-            for j in range(ni):
-                kii[i, j] = k[f, inner[i], inner[j]]
+        if n_p:
+            for i in range(ni):
+                for j in range(ni):
+                    kii[i, j] = k[f, inner[i], inner[j]]
+                for p in range(n_p):
+                    x[i, p] = 1.0 if points[p] == i else 0.0
+            _eq_solve(kii, x, scratch, hi)  # K_ii^-1 at the points
+        for p in range(n_p):  # their rows: -X^T K_ib
             for j in range(nb):
-                x[i, j] = k[f, inner[i], bnd[j]]
+                v = 0.0j
+                for i in range(ni):
+                    v -= x[i, p] * k[f, inner[i], bnd[j]]
+                rp[p, j] = v
+        for i in range(nb):
+            for j in range(nb):
+                s[i, j] = condensed[f, i, j]
             for q in range(nl):
-                x[i, nb + q] = 1.0 if inner[i] == load[q] else 0.0
-        if ni:
-            _eq_solve(kii, x, scratch, hi)
-        for i in range(nb):  # the condensed boundary, the loads on it, the chains
-            for j in range(nb):
-                v = k[f, bnd[i], bnd[j]]
-                for q in range(ni):
-                    v -= k[f, bnd[i], inner[q]] * x[q, j]
-                s[i, j] = v
-            for j in range(nl):
-                v = 1.0 + 0.0j if bnd[i] == load[j] else 0.0j
-                for q in range(ni):
-                    v -= k[f, bnd[i], inner[q]] * x[q, nb + j]
-                rhs[i, j] = v
-        for i in range(m):
-            for j in range(m):
-                s[i, j] += p_l[f, i, j]
-                s[m + i, m + j] += p_r[f, i, j]
+                if load_b[q] >= 0:
+                    rhs[i, q] = 1.0 if load_b[q] == i else 0.0
+                else:
+                    rhs[i, q] = rp[load_p[q], i]
         _eq_solve(s, rhs, scratch, hi)
         for i in range(nb):
             for q in range(nl):
-                out[f, bnd[i], q] = rhs[i, q]
-        for i in range(ni):
+                u_b[f, i, q] = rhs[i, q]
+        for o in range(obs_b.size):
             for j in range(nb):
-                response[f, i, j] = -x[i, j]
+                if obs_b[o] >= 0:
+                    rows[f, o, j] = 1.0 if obs_b[o] == j else 0.0
+                else:
+                    rows[f, o, j] = rp[obs_p[o], j]
             for q in range(nl):
-                v = x[i, nb + q]
+                v = 0.0j
                 for j in range(nb):
-                    v -= x[i, j] * rhs[j, q]
-                out[f, inner[i], q] = v
+                    v += rows[f, o, j] * rhs[j, q]
+                if obs_p[o] >= 0 and load_p[q] >= 0:
+                    v += x[points[obs_p[o]], load_p[q]]
+                u[f, o, q] = v
 
 
 def _propagate_points(step: Any, n: int, out: Any) -> None:
