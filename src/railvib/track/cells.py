@@ -32,6 +32,12 @@ constants ``mu`` (``|mu| < 1``) as its eigenvalues; ``q_n-1 = L q_n``,
 A point load in a cell is solved in that cell with the two semi-infinite chains attached
 at its ends; the response in another cell follows from its boundary displacements
 (``R^k`` or ``L^k`` of the loaded cell's) through the cell's interior response to them.
+The waves are best found on the cell without the load and observation nodes (fewer
+interior DOFs to condense; the nodes only split spans, so its boundary blocks are the
+same), and the loaded cell, which has them, is solved at those points only:
+``K_ii^-1`` at the points (a column each), their rows of the interior response
+``-(K_ii^-1 K_ib)`` by the symmetry of ``K_ii``, and the boundary with the condensed
+cell and the chains.
 Everything is stacked over frequency (no loop over frequencies). Every dense solve is
 equilibrated (rows and columns scaled by the square root of the diagonal), so that a
 slab thousands of times stiffer than the rail costs no digits.
