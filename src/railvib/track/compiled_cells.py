@@ -5,10 +5,10 @@ written frequency by frequency: the Euler spans' exact stiffness, the assembly, 
 condensation of a cell's interior DOFs, the doubling of its boundary blocks (the
 symmetric step of a reciprocal cell, ``C = B^T``: three products instead of the
 reference's four), the wave steps ``R`` and ``L``, and the loaded cell's solve at its
-load and observation points with both semi-infinite chains attached. Each dense solve is the reference's equilibrated
-one (rows and columns scaled by ``|diag|^(-1/2)``) by Gaussian elimination with partial
-pivoting on ``|Re| + |Im|`` (LAPACK's choice), so results agree with the reference to
-rounding. NumPy's stacked solve costs about a microsecond per small matrix whatever its
+load and observation points with both semi-infinite chains attached. Each dense solve
+is the reference's equilibrated one (rows and columns scaled by ``|diag|^(-1/2)``) by
+Gaussian elimination with partial pivoting on ``|Re| + |Im|`` (LAPACK's choice), so
+results agree with the reference to rounding. NumPy's stacked solve costs about a microsecond per small matrix whatever its
 size; here a 4 x 4 solve is a few dozen nanoseconds, and no intermediate array of the
 block is formed.
 

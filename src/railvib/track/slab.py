@@ -639,11 +639,11 @@ class SlabTrack(PeriodicTrack):
         for block in self._blocks(f, extra):
             part = {name: k[block] for name, k in layers.items()}
             # the waves on the cell without the points' nodes (fewer DOFs to condense)
-            waves = cell_waves(self._cell(f[block], np.zeros(0), part)[0])
+            chain = cell_waves(self._cell(f[block], np.zeros(0), part)[0])
             cell, rail_nodes = self._cell(f[block], extra, part)
             load = (load_cell, _rail_dofs(rail_nodes, load_x))
             obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
-            out[block] = cell_receptance(waves, load, obs, cell)
+            out[block] = cell_receptance(chain, load, obs, cell)
         bad = ~np.isfinite(out).all(axis=(1, 2))
         if np.any(bad):
             raise NonFiniteResult(
