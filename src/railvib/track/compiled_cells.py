@@ -8,9 +8,9 @@ reference's four), the wave steps ``R`` and ``L``, and the loaded cell's solve a
 load and observation points with both semi-infinite chains attached. Each dense solve
 is the reference's equilibrated one (rows and columns scaled by ``|diag|^(-1/2)``) by
 Gaussian elimination with partial pivoting on ``|Re| + |Im|`` (LAPACK's choice), so
-results agree with the reference to rounding. NumPy's stacked solve costs about a microsecond per small matrix whatever its
-size; here a 4 x 4 solve is a few dozen nanoseconds, and no intermediate array of the
-block is formed.
+results agree with the reference to rounding. NumPy's stacked solve costs about a
+microsecond per small matrix whatever its size; here a 4 x 4 solve is a few dozen
+nanoseconds, and no intermediate array of the block is formed.
 
 The kernel is used only in a process that has loaded the compiled kernels already (a
 large sweep, or :func:`railvib.track.compiled.compile_kernel`): a single case's run
