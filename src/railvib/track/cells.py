@@ -397,6 +397,7 @@ def cell_receptance(
     if cell is None or cell is waves.cell:
         cell, k = waves.cell, waves.stiffness
     else:
+        assert cell.boundary.size == waves.cell.boundary.size, "the waves' boundary"
         k = cell.stiffness()
     bnd, inner = cell.boundary, cell.interior
     m = bnd.size // 2
