@@ -32,6 +32,12 @@ constants ``mu`` (``|mu| < 1``) as its eigenvalues; ``q_n-1 = L q_n``,
 A point load in a cell is solved in that cell with the two semi-infinite chains attached
 at its ends; the response in another cell follows from its boundary displacements
 (``R^k`` or ``L^k`` of the loaded cell's) through the cell's interior response to them.
+The waves are best found on the cell without the load and observation nodes (fewer
+interior DOFs to condense; the nodes only split spans, so its boundary blocks are the
+same), and the loaded cell, which has them, is solved at those points only:
+``K_ii^-1`` at the points (a column each), their rows of the interior response
+``-(K_ii^-1 K_ib)`` by the symmetry of ``K_ii``, and the boundary with the condensed
+cell and the chains.
 Everything is stacked over frequency (no loop over frequencies). Every dense solve is
 equilibrated (rows and columns scaled by the square root of the diagonal), so that a
 slab thousands of times stiffer than the rail costs no digits.
@@ -49,7 +55,8 @@ from railvib.errors import SolverWarning
 from railvib.track.beam import dynamic_stiffness, field_transfer, timoshenko_transfer
 from railvib.track.compiled_cells import (
     assembled,
-    loaded_cell,
+    euler_span,
+    loaded_points,
     propagated,
     use_compiled_cells,
     wave_chain,
@@ -92,7 +99,8 @@ def span_stiffness(
     DOFs ``(w_a, theta_a, w_b, theta_b)`` (m, rad), end forces and moments on the span
     (N, N m). An Euler span with ``|beta L| >= CLOSED_FORM_WAVENUMBER`` uses the closed
     form (:func:`railvib.track.beam.dynamic_stiffness`); a shorter one, and every
-    Timoshenko span, inverts blocks of the pole-free transfer matrix.
+    Timoshenko span, inverts blocks of the pole-free transfer matrix. An Euler span is
+    computed by the compiled kernel where :func:`use_compiled_cells` says so.
 
     Parameters
     ----------
@@ -114,6 +122,8 @@ def span_stiffness(
         Complex dynamic stiffness, ``(n_freq, 4, 4)``.
     """
     beta4 = np.asarray(beta4, dtype=np.complex128)
+    if shear_flexibility is None and use_compiled_cells():
+        return euler_span(beta4, CLOSED_FORM_WAVENUMBER**4, length, bending_stiffness)
     scale = np.array([1.0, length, 1.0, length])
     out = np.empty(beta4.shape + (4, 4), dtype=np.complex128)
     closed = np.abs(beta4) >= CLOSED_FORM_WAVENUMBER**4
@@ -256,9 +266,6 @@ class CellWaves:
         right of a node and of those to its left.
     right_step, left_step : numpy.ndarray
         ``R`` (``q_n+1 = R q_n``) and ``L`` (``q_n-1 = L q_n``), ``(n_freq, m, m)``.
-    interior_response : numpy.ndarray
-        Interior DOFs per unit boundary displacements of an unloaded cell,
-        ``(n_freq, n_interior, 2 m)``.
     """
 
     cell: Cell
@@ -268,7 +275,6 @@ class CellWaves:
     left_chain: NDArray[np.complex128]
     right_step: NDArray[np.complex128]
     left_step: NDArray[np.complex128]
-    interior_response: NDArray[np.complex128]
 
     def propagation_constants(self) -> NDArray[np.complex128]:
         """``mu`` of the right-going waves per period, ``(n_freq, m)``, least attenuated first."""
@@ -288,7 +294,7 @@ def cell_waves(cell: Cell) -> CellWaves:
     Returns
     -------
     CellWaves
-        The chain's semi-infinite stiffnesses, wave steps and the cell's interior response.
+        The chain's semi-infinite stiffnesses and wave steps.
 
     Warns
     -----
@@ -299,25 +305,22 @@ def cell_waves(cell: Cell) -> CellWaves:
     k = cell.stiffness()
     bnd, inner = cell.boundary, cell.interior
     if use_compiled_cells():
-        *parts, response, unconverged = wave_chain(k, bnd, inner, MAX_DOUBLINGS, CONVERGED)
+        *parts, unconverged = wave_chain(k, bnd, inner, MAX_DOUBLINGS, CONVERGED)
         if np.any(unconverged):
             _warn_unconverged(int(unconverged.sum()))
         a, b, c, e, p_r, p_l, r_step, l_step = parts
-        return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step, response)
+        return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step)
     k_bb = k[:, bnd[:, None], bnd[None, :]]
     if inner.size:
         k_ib = k[:, inner[:, None], bnd[None, :]]
         k_bi = k[:, bnd[:, None], inner[None, :]]
-        response = -_solve(k[:, inner[:, None], inner[None, :]], k_ib)
-        k_bb = k_bb + k_bi @ response
-    else:
-        response = np.zeros((k.shape[0], 0, bnd.size), dtype=np.complex128)
+        k_bb = k_bb - k_bi @ _solve(k[:, inner[:, None], inner[None, :]], k_ib)
     m = bnd.size // 2
     a, b, c, e = k_bb[:, :m, :m], k_bb[:, :m, m:], k_bb[:, m:, :m], k_bb[:, m:, m:]
     p_r, p_l = _doubling(a, b, c, e)
     r_step = -_solve(e + p_r, c)
     l_step = -_solve(p_l + a, b)
-    return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step, response)
+    return CellWaves(cell, k, (a, b, c, e), p_r, p_l, r_step, l_step)
 
 
 def _doubling(
@@ -369,6 +372,7 @@ def cell_receptance(
     waves: CellWaves,
     load: tuple[NDArray[np.int64], NDArray[np.intp]],
     obs: tuple[NDArray[np.int64], NDArray[np.intp]],
+    cell: Cell | None = None,
 ) -> NDArray[np.complex128]:
     """Displacement of DOFs per unit force on DOFs of the chain, ``(n_freq, n_obs, n_load)``.
 
@@ -377,58 +381,134 @@ def cell_receptance(
     waves : CellWaves
         The chain (:func:`cell_waves`).
     load, obs : (numpy.ndarray, numpy.ndarray)
-        For each load (observation point): the index of its cell and its DOF in the cell
+        For each load (observation point): the index of its cell and its DOF in `cell`
         (a DOF of the cell's left boundary stands for the cell's left node).
+    cell : Cell, optional
+        The cell the loads and observation points are nodes of: the waves' cell with
+        further nodes (its spans split there), the same boundary nodes in the same order.
+        Default: the waves' cell. The waves are best found on the cell without them
+        (fewer interior DOFs to condense), the loads placed here.
 
     Returns
     -------
     numpy.ndarray
         Complex receptance in SI units (m/N for displacement DOFs).
     """
-    cell = waves.cell
+    if cell is None or cell is waves.cell:
+        cell, k = waves.cell, waves.stiffness
+    else:
+        assert cell.boundary.size == waves.cell.boundary.size, "the waves' boundary"
+        k = cell.stiffness()
     bnd, inner = cell.boundary, cell.interior
     m = bnd.size // 2
-    left, right = bnd[:m], bnd[m:]
     load_cell, load_dof = load
     obs_cell, obs_dof = obs
-    n_freq = waves.stiffness.shape[0]
-    if use_compiled_cells():
-        u = loaded_cell(waves.stiffness, left, right, waves.left_chain, waves.right_chain, load_dof)
-    else:
-        k = waves.stiffness.copy()
-        k[:, left[:, None], left[None, :]] += waves.left_chain
-        k[:, right[:, None], right[None, :]] += waves.right_chain
-        rhs = np.zeros((n_freq, k.shape[1], load_dof.size), dtype=np.complex128)
-        rhs[:, load_dof, np.arange(load_dof.size)] = 1.0
-        u = _solve(k, rhs)  # (n_freq, n_dof, n_load): the loaded cell with both chains
-    # each observation DOF's displacement per unit boundary displacements of its cell
-    rows = np.zeros((n_freq, obs_dof.size, 2 * m), dtype=np.complex128)
-    for i, dof in enumerate(obs_dof):
-        at_bnd = np.flatnonzero(bnd == dof)
-        if at_bnd.size:
-            rows[:, i, at_bnd[0]] = 1.0
-        else:
-            rows[:, i] = waves.interior_response[:, int(np.flatnonzero(inner == dof)[0])]
+    n_freq = k.shape[0]
+    a, b, c, e = waves.blocks
+    condensed = np.concatenate(
+        [
+            np.concatenate([a + waves.left_chain, b], axis=2),
+            np.concatenate([c, e + waves.right_chain], axis=2),
+        ],
+        axis=1,
+    )
+    where = _where(bnd, inner, load_dof, obs_dof)
+    solve = loaded_points if use_compiled_cells() else _loaded_points
+    u, u_b, rows = solve(k, bnd, inner, condensed, *where)
     offsets = obs_cell[:, None] - load_cell[None, :]
     # boundary displacements of the cells n = 1, 2, ... to the right of the loaded one
-    # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end)
-    steps = int(max(offsets.max(initial=0), 0)), int(max(-offsets.min(initial=0), 0))
+    # (q_n+1 = R q_n from its right end) and to its left (q_n-1 = L q_n from its left end),
+    # as far as each load's farthest observed cell
     chain = propagated if use_compiled_cells() else _propagate
-    right_q = chain(waves.right_step, u[:, right, :], steps[0])
-    left_q = chain(waves.left_step, u[:, left, :], steps[1])
     out = np.empty((n_freq, obs_dof.size, load_dof.size), dtype=np.complex128)
-    for i in range(obs_dof.size):
-        for j in range(load_dof.size):
+    for j in range(load_dof.size):
+        steps = int(max(offsets[:, j].max(), 0)), int(max(-offsets[:, j].min(), 0))
+        right_q = chain(waves.right_step, u_b[:, m:, j : j + 1], steps[0])
+        left_q = chain(waves.left_step, u_b[:, :m, j : j + 1], steps[1])
+        for i in range(obs_dof.size):
             n = int(offsets[i, j])
             if n == 0:
-                out[:, i, j] = u[:, obs_dof[i], j]
+                out[:, i, j] = u[:, i, j]
                 continue
             if n > 0:  # the observed cell's ends: n - 1 and n steps from the loaded cell's
-                q = np.concatenate([right_q[n - 1][:, :, j], right_q[n][:, :, j]], axis=1)
+                q = np.concatenate([right_q[n - 1][:, :, 0], right_q[n][:, :, 0]], axis=1)
             else:
-                q = np.concatenate([left_q[-n][:, :, j], left_q[-n - 1][:, :, j]], axis=1)
+                q = np.concatenate([left_q[-n][:, :, 0], left_q[-n - 1][:, :, 0]], axis=1)
             out[:, i, j] = np.einsum("fa,fa->f", rows[:, i], q)
     return out
+
+
+def _where(
+    bnd: NDArray[np.intp],
+    inner: NDArray[np.intp],
+    load_dof: NDArray[np.intp],
+    obs_dof: NDArray[np.intp],
+) -> tuple[NDArray[np.int64], ...]:
+    """Where the loads' and observation points' DOFs are in the cell.
+
+    Returns ``(points, load_b, load_p, obs_b, obs_p)``: the interior DOFs that are a load
+    or an observation point (their indices in `inner`), and for each load and observation
+    point its index in `bnd` and in ``points`` (-1 where it is not one).
+    """
+    in_bnd = {int(d): i for i, d in enumerate(bnd)}
+    in_inner = {int(d): i for i, d in enumerate(inner)}
+    points = sorted({in_inner[int(d)] for d in (*load_dof, *obs_dof) if int(d) in in_inner})
+    in_points = {i: p for p, i in enumerate(points)}
+
+    def place(dofs: NDArray[np.intp]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        at_b = [in_bnd.get(int(d), -1) for d in dofs]
+        at_p = [in_points.get(in_inner.get(int(d), -1), -1) for d in dofs]
+        return np.array(at_b, dtype=np.int64), np.array(at_p, dtype=np.int64)
+
+    return (np.array(points, dtype=np.int64), *place(load_dof), *place(obs_dof))
+
+
+def _loaded_points(
+    k: NDArray[np.complex128],
+    bnd: NDArray[np.intp],
+    inner: NDArray[np.intp],
+    condensed: NDArray[np.complex128],
+    points: NDArray[np.int64],
+    load_b: NDArray[np.int64],
+    load_p: NDArray[np.int64],
+    obs_b: NDArray[np.int64],
+    obs_p: NDArray[np.int64],
+) -> tuple[NDArray[np.complex128], ...]:
+    """The loaded cell with both chains, solved at its load and observation points only.
+
+    With ``X = K_ii^-1`` at the interior points (one solve, a column per point), a point's
+    row of the interior response to the boundary is ``-X^T K_ib`` (``K_ii`` is symmetric),
+    an interior load's boundary load is the transpose of its row, the boundary is solved
+    with the condensed cell and the chains (`condensed`, ``(n_freq, 2 m, 2 m)``), and an
+    observation point's displacement is its row times the boundary's plus ``X`` between
+    it and an interior load. Returns the points' DOFs per unit load ``(n_freq, n_obs,
+    n_load)``, the boundary's ``(n_freq, 2 m, n_load)`` and the observation points' rows
+    ``(n_freq, n_obs, 2 m)``.
+    """
+    n_freq = k.shape[0]
+    unit_b = np.eye(bnd.size, dtype=np.complex128)
+    x = np.zeros((n_freq, inner.size, points.size), dtype=np.complex128)
+    rows_p = np.zeros((n_freq, points.size, bnd.size), dtype=np.complex128)
+    if points.size:
+        unit = np.zeros((n_freq, inner.size, points.size), dtype=np.complex128)
+        unit[:, points, np.arange(points.size)] = 1.0
+        x = _solve(k[:, inner[:, None], inner[None, :]], unit)
+        rows_p = -np.einsum("fip,fib->fpb", x, k[:, inner[:, None], bnd[None, :]])
+
+    def rows(at_b: NDArray[np.int64], at_p: NDArray[np.int64]) -> NDArray[np.complex128]:
+        out = np.empty((n_freq, at_b.size, bnd.size), dtype=np.complex128)
+        for i, (ib, ip) in enumerate(zip(at_b, at_p, strict=True)):
+            out[:, i] = unit_b[ib] if ib >= 0 else rows_p[:, ip]
+        return out
+
+    rows_obs = rows(obs_b, obs_p)
+    u_b = _solve(condensed, rows(load_b, load_p).transpose(0, 2, 1))
+    u = rows_obs @ u_b
+    for i, ip in enumerate(obs_p):
+        for j, jp in enumerate(load_p):
+            if ip >= 0 and jp >= 0:
+                u[:, i, j] += x[:, points[ip], jp]
+    return u, u_b, rows_obs
 
 
 def _propagate(
