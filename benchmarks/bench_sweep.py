@@ -49,7 +49,7 @@ from railvib.case import build_grid, build_spectrum, build_system, case_from_dic
 from railvib.case.load import merge_case_dicts
 from railvib.results.variables import compute_variables
 from railvib.sweep import SweepLayout, SweepSpec, run_sweep, sweep_from_dict
-from railvib.sweep.batch import _summary, contact_check, criteria_summary
+from railvib.sweep.batch import _summary, criteria_summary
 from railvib.sweep.spec import nested_override
 
 PAD = {
@@ -236,7 +236,6 @@ def same_work_alone(spec: SweepSpec, d: dict[str, Any]) -> None:
     values = compute_variables(batch, s_r, names)
     loads = np.asarray(system.vehicle.static_wheel_loads(), dtype=float)[None]
     psd_force = values["psd_force"]
-    contact_check(f, psd_force, loads, spec.loss_of_contact_threshold)
     criteria_summary(spec, f, batch, s_r, psd_force, loads)
     _summary(f, np.asarray(values[spec.summary_variable]), spec.rms_bands)
 

@@ -62,6 +62,15 @@ class ChunkFiles:
         """How `array` (a ``zarr.Array``) keeps its chunks, or None where this does not apply.
 
         Applies to a format-2 array of a ``LocalStore`` in C order without filters.
+
+        Parameters
+        ----------
+        array : zarr.Array
+            An array of the store.
+
+        Returns
+        -------
+        ChunkFiles or None
         """
         meta = array.metadata
         root = getattr(array.store, "root", None)
@@ -92,7 +101,12 @@ class ChunkFiles:
         where : tuple of slice
             The region, one slice per dimension (``slice(None)``: the whole dimension).
         block : numpy.ndarray
-            Its values, shaped as the region.
+            Its values in the array's unit, shaped as the region.
+
+        Returns
+        -------
+        bool
+            Whether it was written (else nothing was).
         """
         index = []
         for s, c, n in zip(where, self.chunks, self.shape, strict=True):
