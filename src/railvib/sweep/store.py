@@ -24,6 +24,7 @@ import os
 import re
 import shutil
 import tempfile
+import threading
 import warnings
 import zipfile
 from collections.abc import Iterator
@@ -114,6 +115,16 @@ def remove_leftovers(root: str | Path) -> list[Path]:
 async def _gather(writes: list[Any]) -> None:
     """Await the coroutines `writes` together (zarr writes of one chunk)."""
     await asyncio.gather(*writes)
+
+
+def _import_store_libraries() -> None:
+    """Import what writing the Zarr store needs (zarr, and Dask where installed)."""
+    import zarr  # noqa: F401  (imported ahead of its use in ChunkStore._open_zarr)
+
+    try:
+        import dask.array  # noqa: F401
+    except ImportError:
+        pass
 
 
 def _remove(path: Path) -> None:
@@ -502,9 +513,11 @@ class ChunkStore:
         sweep is held); then each chunk is compressed and written as it arrives, while
         the workers compute the next, and the parent holds one chunk at a time.
         :meth:`finish_zarr` adds the chunks finished by an earlier run and moves the
-        store into place.
+        store into place. Zarr and Dask are imported now, in a thread of their own, while
+        the workers start (their imports are most of the layout's cost).
         """
         self._stream = True
+        threading.Thread(target=_import_store_libraries, name="railvib-zarr-import").start()
 
     def _open_zarr(self, example: dict[str, NDArray[Any]]) -> None:
         """Write the store's layout, shaped and typed after one chunk's `example` arrays.
