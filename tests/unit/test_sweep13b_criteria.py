@@ -5,6 +5,7 @@ import pytest
 import xarray as xr
 
 from railvib.outputs import ContactCheck, RideComfort, WheelRailForces
+from railvib.results.variables import compute_variables, response_psds
 from railvib.sweep import batch as sweep_batch
 from railvib.sweep import sweep_from_dict
 from railvib.sweep.batch import CONTACT_SUMMARY, CRITERIA_SUMMARY, criteria_summary
@@ -51,3 +52,23 @@ def test_the_contact_check_and_criteria_equal_the_output_classes_exactly(chunk):
         # the same operations on the same numbers: equal exactly, not to a tolerance
         np.testing.assert_array_equal(got[f"summary/{name}"], expected, err_msg=name)
         assert got[f"summary/{name}"].dtype == expected.dtype, name
+
+
+@pytest.mark.parametrize("name", ["psd_acceleration", "psd_displacement"])
+def test_the_response_psds_written_in_place_equal_the_variables_exactly(chunk, name):
+    _, _, frf, s_r, _, _ = chunk
+    want = compute_variables(frf, s_r, [name])[name]
+    got = response_psds(frf, s_r, name == "psd_acceleration")
+    # the same operations on the same numbers, only written elsewhere: equal exactly
+    np.testing.assert_array_equal(got, want)
+    assert got.shape == (*frf.vehicle.shape[:-1], frf.vehicle.shape[-1] + frf.rail.shape[-1])
+
+
+def test_a_chunk_stores_what_the_variables_give_for_its_cases(chunk):
+    spec, context, frf, s_r, psd_force, loads = chunk
+    names = ["psd_acceleration", "psd_force", "irregularity_psd", "psd_displacement"]
+    got = sweep_batch._chunk_variables(frf, s_r, dict.fromkeys(names))
+    want = compute_variables(frf, s_r, names)
+    assert list(got) == names
+    for name in names:
+        np.testing.assert_array_equal(got[name], want[name], err_msg=name)
