@@ -522,6 +522,14 @@ def _solve_groups(
     pads: dict[str, PadModel] = {}  # this chunk's
     spectra: dict[str, Any] = {}
     temporal: dict[tuple[str, float], NDArray[np.float64]] = {}
+    # the key of a table the cases share with the base case (the same object), made once
+    known: dict[int, tuple[Any, str]] = {}
+
+    def shared(table: Any) -> str:
+        if id(table) not in known:
+            known[id(table)] = (table, _key(table))  # the table kept: its id stays its own
+        return known[id(table)][1]
+
     for key, members in groups.items():
         built = context.built(key, cases[members[0]])
         system = built.system
@@ -540,7 +548,7 @@ def _solve_groups(
             systems[i] = replace(system, track=tracks[tkey], speed=speed)
             loads[i] = built.static_loads
             track_keys[i] = (tkey, built.suffix)
-            ikey = _key(cases[i]["irregularity"])
+            ikey = shared(cases[i]["irregularity"])
             if ikey not in spectra:
                 spectra[ikey] = build_spectrum(_with_irregularity(built.case, cases[i]))
             if (ikey, speed) not in temporal:
@@ -551,7 +559,10 @@ def _solve_groups(
         [s for s in systems if s is not None],
         track_keys,
         # the vehicle as built: its table, the train it repeats in, and half_car halving it
-        [_key([c["vehicle"], c.get("train"), c["rail_model"] == "half_car"]) for c in cases],
+        [
+            f"{shared(c['vehicle'])}|{shared(c.get('train'))}|{c['rail_model'] == 'half_car'}"
+            for c in cases
+        ],
         compiled=compiled,
     )
     return frf, s_r, np.stack([w for w in loads if w is not None])
