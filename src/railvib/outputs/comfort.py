@@ -48,6 +48,7 @@ __all__ = [
     "ISO2631_COMFORT",
     "FloorGeometry",
     "RideComfort",
+    "comfort_arrays",
     "comfort_category",
     "floor_acceleration_psd",
     "floor_geometry",
@@ -438,3 +439,42 @@ class RideComfort(DerivedOutput):
             name: xr.DataArray(v, dims=dims, coords=floor, attrs=attrs[name])
             for name, (v, dims) in values.items()
         }
+
+
+def comfort_arrays(
+    comfort: RideComfort,
+    f: NDArray[np.float64],
+    h_bounce: NDArray[np.complex128],
+    h_pitch: NDArray[np.complex128],
+    irregularity_psd: NDArray[np.float64],
+) -> dict[str, NDArray[np.float64]]:
+    """:meth:`RideComfort.compute`'s a_w, N_MV and Wz of many cases, in NumPy arrays.
+
+    The same operations on the same values (bit for bit), without labelled arrays: for
+    a sweep's chunk of cases, where building the datasets costs more than the criteria.
+
+    Parameters
+    ----------
+    comfort : RideComfort
+        The criteria's settings (body, floor points, weighting, band).
+    f : numpy.ndarray
+        Frequencies, Hz, ``(n_freq,)``.
+    h_bounce, h_pitch : numpy.ndarray
+        The body's bounce (m/m) and pitch (rad/m) per metre of irregularity, ``(...,
+        n_freq)``.
+    irregularity_psd : numpy.ndarray
+        One-sided irregularity PSD, m^2/Hz, ``(..., n_freq)``.
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``comfort_aw`` (m/s^2), ``mean_comfort_index`` and ``sperling_wz`` (1), ``(...,
+        n_floor)``.
+    """
+    band = comfort.band(f)
+    psd = floor_acceleration_psd(f, h_bounce, h_pitch, irregularity_psd, comfort.floor_positions_m)
+    axis = psd.ndim - 2
+    a_w = weighted_rms(f, psd, WEIGHTINGS[comfort.weighting].magnitude(f), band, axis=axis)
+    a_wb = weighted_rms(f, psd, WEIGHTINGS["Wb"].magnitude(f), band, axis=axis)
+    a_s = weighted_rms(f, psd, sperling_weighting(f), band, axis=axis)
+    return {"comfort_aw": a_w, "mean_comfort_index": 6.0 * a_wb, "sperling_wz": sperling_index(a_s)}

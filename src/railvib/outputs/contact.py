@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 import xarray as xr
+from numpy.typing import NDArray
 from scipy.special import ndtr  # Phi, the standard normal CDF (what scipy.stats.norm.cdf calls)
 
 from railvib.grid import trapezoid
@@ -26,6 +27,7 @@ __all__ = [
     "contact_line",
     "contact_table",
     "is_linear_model_valid",
+    "loss_of_contact_arrays",
     "linearity_note",
     "loss_of_contact_threshold",
 ]
@@ -252,3 +254,30 @@ def linearity_note(ds: xr.Dataset) -> str | None:
         f"contact has probability {worst:.1%} (Gaussian estimate). PEM assumes permanent "
         "contact, so treat the results near the contact resonances with care."
     )
+
+
+def loss_of_contact_arrays(
+    sigma: NDArray[np.float64], static_load: NDArray[np.float64], threshold: float
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """:meth:`ContactCheck.compute`'s probability and flag from the force RMS, in NumPy arrays.
+
+    The same operations on the same values (bit for bit), without labelled arrays.
+
+    Parameters
+    ----------
+    sigma : numpy.ndarray
+        Contact force RMS over the grid, N, ``(..., n_wheel)``.
+    static_load : numpy.ndarray
+        Static load of each contact, N, broadcastable to `sigma`.
+    threshold : float
+        Largest probability of loss of contact within the linear model (dimensionless).
+
+    Returns
+    -------
+    probability : numpy.ndarray
+        ``Phi(-P0 / sigma)``, ``(..., n_wheel)``.
+    valid : numpy.ndarray
+        Whether every wheel's probability is at most `threshold`, ``(...)``.
+    """
+    probability = ndtr(-static_load / np.maximum(sigma, np.finfo(float).tiny))
+    return probability, probability.max(axis=-1) <= threshold

@@ -14,11 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
+from numpy.typing import NDArray
 
 from railvib.grid import trapezoid
 from railvib.outputs.base import OUTPUTS, DerivedOutput
 
-__all__ = ["WheelRailForces"]
+__all__ = ["WheelRailForces", "dynamic_load_arrays"]
 
 
 @OUTPUTS.register("wheel_rail_forces")
@@ -77,3 +78,28 @@ class WheelRailForces(DerivedOutput):
                 attrs["car_dynamic_load_factor"]
             ),
         }
+
+
+def dynamic_load_arrays(
+    sigma: NDArray[np.float64], static_load: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """:meth:`WheelRailForces.compute`'s load factors from the force RMS, in NumPy arrays.
+
+    The same operations on the same values (bit for bit), without labelled arrays.
+
+    Parameters
+    ----------
+    sigma : numpy.ndarray
+        Contact force RMS over the grid, N, ``(..., n_wheel)``.
+    static_load : numpy.ndarray
+        Static load of each wheel, N, broadcastable to `sigma`.
+
+    Returns
+    -------
+    factor : numpy.ndarray
+        ``1 + 3 sigma / P0`` of each wheel, ``(..., n_wheel)``.
+    car_factor : numpy.ndarray
+        The worst wheel's, ``(...)``.
+    """
+    factor = 1.0 + 3.0 * sigma / static_load
+    return factor, factor.max(axis=-1)

@@ -17,7 +17,13 @@ from numpy.typing import NDArray
 from railvib.response import FRF
 from railvib.results.units import QUANTITY_UNITS, quantity_unit
 
-__all__ = ["PER_FREQUENCY", "VARIABLES", "ResultVariable", "compute_variables"]
+__all__ = [
+    "PER_FREQUENCY",
+    "VARIABLES",
+    "ResultVariable",
+    "compute_variables",
+    "response_psds",
+]
 
 _Compute = Callable[[FRF, NDArray[np.float64]], NDArray[np.generic]]
 
@@ -175,3 +181,39 @@ def compute_variables(
     """
     s_r = np.asarray(irregularity_psd, dtype=float)
     return {name: VARIABLES[name].compute(frf, s_r) for name in names}
+
+
+def response_psds(
+    frf: FRF, irregularity_psd: NDArray[np.float64], acceleration: bool
+) -> NDArray[np.float64]:
+    """``psd_acceleration`` (or ``psd_displacement``) of :data:`VARIABLES`, written in place.
+
+    The same operations on the same values (bit for bit), the vehicle's and the rail's
+    parts each written into its columns of the result: without the complex copy of
+    :attr:`railvib.response.FRF.displacement` that joins them first, and without the
+    intermediate arrays of the whole (half the time on a sweep's chunk of cases).
+
+    Parameters
+    ----------
+    frf : FRF
+        Responses per metre of irregularity, optionally with leading batch axes.
+    irregularity_psd : numpy.ndarray
+        One-sided temporal irregularity PSD, m^2/Hz, ``(..., n_freq)``.
+    acceleration : bool
+        Acceleration PSDs, (m/s^2)^2/Hz (else displacement PSDs, m^2/Hz); a pitch
+        response's per radian.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(..., n_freq, n_resp)``, the vehicle's DOFs then the rail at each wheel.
+    """
+    s_r = np.asarray(irregularity_psd, dtype=float)[..., None]
+    n_dof = frf.vehicle.shape[-1]
+    out = np.empty((*frf.vehicle.shape[:-1], n_dof + frf.rail.shape[-1]))
+    for part, columns in ((frf.vehicle, slice(0, n_dof)), (frf.rail, slice(n_dof, None))):
+        if acceleration:
+            np.multiply(np.abs(part) ** 2 * s_r, _omega4(frf.f), out=out[..., columns])
+        else:
+            np.multiply(np.abs(part) ** 2, s_r, out=out[..., columns])
+    return out

@@ -27,13 +27,16 @@ from railvib.case.load import merge_case_dicts
 from railvib.coupling import CoupledSystem, coupled_response
 from railvib.grid import trapezoid
 from railvib.labels import response_labels
-from railvib.outputs import ContactCheck, RideComfort, WheelRailForces
+from railvib.outputs import ContactCheck, RideComfort
+from railvib.outputs.comfort import comfort_arrays
+from railvib.outputs.contact import loss_of_contact_arrays
+from railvib.outputs.forces import dynamic_load_arrays
 from railvib.pads import PADS, PadModel
 from railvib.pads.scaled import ScaledPad
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
 from railvib.results.stats import summary_names
-from railvib.results.variables import compute_variables
+from railvib.results.variables import compute_variables, response_psds
 from railvib.solve import criteria_settings
 from railvib.sweep.layout import SweepLayout, is_cheap_field, is_pad_field
 from railvib.sweep.spec import SweepSpec
@@ -180,6 +183,7 @@ class _Context:
     f: NDArray[np.float64]
     criteria: dict[str, dict[str, Any]]
     groups: OrderedDict[str, _Built] = dataclasses.field(default_factory=OrderedDict)
+    pads: OrderedDict[str, PadModel] = dataclasses.field(default_factory=OrderedDict)
 
     def built(self, key: str, case_dict: dict[str, Any]) -> _Built:
         """The group `key` of case `case_dict` built (the most recent groups are kept)."""
@@ -201,11 +205,31 @@ class _Context:
             self.groups.popitem(last=False)
         return out
 
+    def pad(self, key: str, template: PadModel, table: dict[str, Any]) -> PadModel:
+        """The pad `key` of `table` as a track with pad `template` uses it (built once).
+
+        A pad reading a data file (a ``path`` in its table) is built again at each call:
+        the file may change between two runs of one sweep in one process.
+        """
+        if key in self.pads:
+            self.pads.move_to_end(key)
+            return self.pads[key]
+        pad = _pad_like(template, table)
+        if not _reads_file(table):
+            self.pads[key] = pad
+            if len(self.pads) > _PADS_KEPT:
+                self.pads.popitem(last=False)
+        return pad
+
 
 #: structural groups kept built per process (a chunk of a sweep over pads, temperatures
 #: and speeds is one group, the same in every chunk; a chunk of a rail x vehicle sweep has
 #: as many as cases)
 _GROUPS_KEPT = 64
+
+#: pads kept built per process: a sweep over pad parameters x temperatures meets each
+#: pad again at each temperature
+_PADS_KEPT = 4096
 
 #: the context of the sweep this process computes chunks of, by the (frozen, hashable) spec:
 #: each task brings its own copy of the spec, equal to the last one
@@ -265,16 +289,29 @@ def _compute_layout(spec: SweepSpec, chunk_id: int) -> dict[str, NDArray[Any]]:
     compiled = use_compiled(len(cases) * f.size, work=layout.n_cases * f.size)
     frf, s_r, loads = _solve_groups(context, cases, groups, compiled)
     needed = dict.fromkeys([*spec.variables, "psd_force", spec.summary_variable])
-    values = compute_variables(frf, s_r, needed)  # each variable computed once
+    values = _chunk_variables(frf, s_r, needed)  # each variable computed once
     out: dict[str, NDArray[Any]] = {name: values[name] for name in spec.variables}
     psd_force = np.asarray(values["psd_force"], dtype=float)
-    check = contact_check(f, psd_force, loads, spec.loss_of_contact_threshold)
-    for name in CONTACT_SUMMARY:
-        out[f"summary/{name}"] = check[name].values
     out.update(criteria_summary(spec, f, frf, s_r, psd_force, loads))
     target = np.asarray(values[spec.summary_variable], dtype=float)
     out.update(_summary(f, target, spec.rms_bands))
     return out
+
+
+def _chunk_variables(
+    frf: FRF, s_r: NDArray[np.float64], names: dict[str, None]
+) -> dict[str, NDArray[Any]]:
+    """:func:`railvib.results.variables.compute_variables`, the response PSDs in place.
+
+    The response PSDs by :func:`railvib.results.variables.response_psds` (bit for bit the
+    same values, half the time); the others by :func:`compute_variables`.
+    """
+    psds = {"psd_acceleration": True, "psd_displacement": False}
+    out = compute_variables(frf, s_r, [n for n in names if n not in psds])
+    for name in names:
+        if name in psds:
+            out[name] = response_psds(frf, s_r, psds[name])
+    return {name: out[name] for name in names}
 
 
 def _summary(
@@ -313,10 +350,15 @@ def criteria_summary(
     irregularity_psd: NDArray[np.float64],
     psd_force: NDArray[np.float64],
     static_loads: NDArray[np.float64],
-) -> dict[str, NDArray[np.float64]]:
-    """The criteria of many cases (the run's derived outputs), as ``summary/<name>`` arrays.
+) -> dict[str, NDArray[Any]]:
+    """The contact check and the criteria of many cases, as ``summary/<name>`` arrays.
 
-    The floor points and the comfort band are those of the base case
+    What :class:`railvib.outputs.ContactCheck`, :class:`railvib.outputs.WheelRailForces`
+    and :class:`railvib.outputs.RideComfort` give a run, bit for bit, on NumPy arrays
+    over the chunk's cases at once (:func:`railvib.outputs.contact.loss_of_contact_arrays`,
+    :func:`railvib.outputs.forces.dynamic_load_arrays`,
+    :func:`railvib.outputs.comfort.comfort_arrays`); the force RMS is integrated once
+    for both. The floor points and the comfort band are those of the base case
     (:func:`railvib.solve.criteria_settings`): a sweep over the vehicle's geometry keeps
     the base case's floor points.
 
@@ -338,29 +380,34 @@ def criteria_summary(
     Returns
     -------
     dict of numpy.ndarray
-        :data:`CRITERIA_SUMMARY` variables, case first.
+        :data:`CONTACT_SUMMARY` and :data:`CRITERIA_SUMMARY` variables, case first.
     """
     settings = _context(spec).criteria
-    forces = xr.Dataset(
-        {
-            "psd_force": (("case", "frequency", "wheel"), psd_force),
-            "static_contact_load": (("case", "wheel"), static_loads),
-        },
-        coords={"frequency": f},
-    )
-    values = WheelRailForces().compute(forces)
+    sigma = np.sqrt(trapezoid(psd_force, f, axis=1))
+    probability, valid = loss_of_contact_arrays(sigma, static_loads, spec.loss_of_contact_threshold)
+    factor, car_factor = dynamic_load_arrays(sigma, static_loads)
+    values: dict[str, NDArray[Any]] = {
+        "contact_force_rms": sigma,
+        "loss_of_contact_probability": probability,
+        "linear_model_valid": valid,
+        "dynamic_load_factor": factor,
+        "car_dynamic_load_factor": car_factor,
+    }
     if "ride_comfort" in settings:
-        responses = xr.Dataset(
-            {
-                "frf_displacement": (("case", "frequency", "response"), frf.vehicle),
-                "irregularity_psd": (("case", "frequency"), irregularity_psd),
-            },
-            coords={"frequency": f, "response": list(frf.dofs)},
+        comfort = RideComfort(**settings["ride_comfort"])
+        dofs = list(frf.dofs)
+        values.update(
+            comfort_arrays(
+                comfort,
+                f,
+                frf.vehicle[..., dofs.index(f"{comfort.body}.bounce")],
+                frf.vehicle[..., dofs.index(f"{comfort.body}.pitch")],
+                irregularity_psd,
+            )
         )
-        values.update(RideComfort(**settings["ride_comfort"]).compute(responses))
     return {
-        f"summary/{name}": np.asarray(values[name].transpose("case", ...).values, dtype=float)
-        for name in CRITERIA_SUMMARY
+        f"summary/{name}": values[name]
+        for name in (*CONTACT_SUMMARY, *CRITERIA_SUMMARY)
         if name in values
     }
 
@@ -472,9 +519,17 @@ def _solve_groups(
     systems: list[CoupledSystem | None] = [None] * n_case
     loads: list[NDArray[np.float64] | None] = [None] * n_case
     track_keys: list[tuple[str, str]] = [("", "")] * n_case
-    pads: dict[str, PadModel] = {}
+    pads: dict[str, PadModel] = {}  # this chunk's
     spectra: dict[str, Any] = {}
     temporal: dict[tuple[str, float], NDArray[np.float64]] = {}
+    # the key of a table the cases share with the base case (the same object), made once
+    known: dict[int, tuple[Any, str]] = {}
+
+    def shared(table: Any) -> str:
+        if id(table) not in known:
+            known[id(table)] = (table, _key(table))  # the table kept: its id stays its own
+        return known[id(table)][1]
+
     for key, members in groups.items():
         built = context.built(key, cases[members[0]])
         system = built.system
@@ -485,7 +540,7 @@ def _solve_groups(
             if tkey not in tracks:
                 pkey = _key([track["pad"], built.pad_factor])
                 if pkey not in pads:
-                    pads[pkey] = _pad_like(system.track.pad, track["pad"])
+                    pads[pkey] = context.pad(pkey, system.track.pad, track["pad"])
                 tracks[tkey] = replace(
                     system.track, pad=pads[pkey], pad_temperature=track.get("pad_temperature_c")
                 )
@@ -493,7 +548,7 @@ def _solve_groups(
             systems[i] = replace(system, track=tracks[tkey], speed=speed)
             loads[i] = built.static_loads
             track_keys[i] = (tkey, built.suffix)
-            ikey = _key(cases[i]["irregularity"])
+            ikey = shared(cases[i]["irregularity"])
             if ikey not in spectra:
                 spectra[ikey] = build_spectrum(_with_irregularity(built.case, cases[i]))
             if (ikey, speed) not in temporal:
@@ -504,7 +559,10 @@ def _solve_groups(
         [s for s in systems if s is not None],
         track_keys,
         # the vehicle as built: its table, the train it repeats in, and half_car halving it
-        [_key([c["vehicle"], c.get("train"), c["rail_model"] == "half_car"]) for c in cases],
+        [
+            f"{shared(c['vehicle'])}|{shared(c.get('train'))}|{c['rail_model'] == 'half_car'}"
+            for c in cases
+        ],
         compiled=compiled,
     )
     return frf, s_r, np.stack([w for w in loads if w is not None])
@@ -516,6 +574,15 @@ def _pad_like(template: PadModel, table: dict[str, Any]) -> PadModel:
     if isinstance(template, ScaledPad):
         return ScaledPad(pad, template.factor)
     return pad
+
+
+def _reads_file(node: Any) -> bool:
+    """Whether a table (or anything in it) names a data file (a ``path``)."""
+    if isinstance(node, Mapping):
+        return "path" in node or any(_reads_file(v) for v in node.values())
+    if isinstance(node, list | tuple):
+        return any(_reads_file(v) for v in node)
+    return False
 
 
 def _with_irregularity(case: Case, full: dict[str, Any]) -> Case:

@@ -23,18 +23,21 @@ from collections.abc import Callable, Generator, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from contextlib import AbstractContextManager, closing, contextmanager, nullcontext
+from importlib.util import find_spec
 from pathlib import Path
 from typing import Any
 
 import xarray as xr
 from numpy.typing import NDArray
 
+from railvib.case import build_grid, case_from_dict
 from railvib.errors import CaseError, RailvibError
 from railvib.sweep.batch import compute_chunk
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.progress import case_progress
 from railvib.sweep.spec import SweepSpec
 from railvib.sweep.store import ChunkStore
+from railvib.track.compiled import COMPILED_MIN_POINTS, LOADED_MIN_POINTS
 
 __all__ = [
     "CONNECT_TIMEOUT_S",
@@ -320,12 +323,33 @@ def _n(shape: tuple[int, ...]) -> int:
     return n
 
 
-def _mp_context() -> Any:
+def _mp_context(spec: SweepSpec) -> Any:
+    """The workers' start method: forked from a fork server that imported the sweep's code.
+
+    Where the sweep's workers solve on the compiled kernels, the fork server loads them
+    too (:mod:`railvib.sweep.preload`), once for every worker. The fork server is started
+    once per process: a later sweep's workers are forked from the first one's.
+    """
     if sys.platform.startswith("linux"):
         ctx = mp.get_context("forkserver")
-        ctx.set_forkserver_preload(["railvib.sweep.batch"])
+        preload = ["railvib.sweep.batch"]
+        if _workers_load_kernels(spec):
+            preload.append("railvib.sweep.preload")
+        ctx.set_forkserver_preload(preload)
         return ctx
     return mp.get_context("spawn")
+
+
+def _workers_load_kernels(spec: SweepSpec) -> bool:
+    """Whether the workers of `spec` load the compiled kernels (numba not imported here)."""
+    if os.environ.get("RAILVIB_COMPILED", "1") == "0" or find_spec("numba") is None:
+        return False
+    n_freq = build_grid(case_from_dict(spec.base_case_dict(), warn=False)).f.size
+    lay = SweepLayout(spec)
+    return (
+        min(spec.chunk_size, lay.n_cases) * n_freq >= LOADED_MIN_POINTS
+        and lay.n_cases * n_freq >= COMPILED_MIN_POINTS
+    )
 
 
 def _start_forkserver(ctx: Any) -> None:
@@ -430,7 +454,7 @@ def _alive(pid: int) -> bool:
 
 def _local(spec: SweepSpec, todo: list[int], workers: int) -> Iterator[ChunkResult]:
     """Chunks on local processes, at most 2 queued per worker; yields as they finish."""
-    ctx = _mp_context()
+    ctx = _mp_context(spec)
     _start_forkserver(ctx)
     pool = ProcessPoolExecutor(
         max_workers=min(workers, len(todo)),

@@ -26,17 +26,19 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from railvib.case import build_system, load_preset_case
 from railvib.coupled_kernel import coupled_points
 from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem, compiled_solve, track_receptances
 from railvib.errors import CaseError
 from railvib.pads.base import PadModel
 from railvib.response import FRF
 from railvib.stack import dot, put, solve, to_numpy
+from railvib.track.compiled import COMPILED_MIN_POINTS, LOADED_MIN_POINTS, use_compiled
 from railvib.track.slab import SlabTrack
 from railvib.track.stacked import receptance_entries, stacked_waves
 from railvib.vehicle.assembly import WheelCondensation
 
-__all__ = ["frf_case_stack", "frf_pad_stack", "frf_stack"]
+__all__ = ["frf_case_stack", "frf_pad_stack", "frf_stack", "load_compiled_kernels"]
 
 
 def frf_case_stack(
@@ -150,6 +152,26 @@ def frf_case_stack(
             for i, e in enumerate(entries):  # each entry written once, into its place
                 whole[blk, :, i] = e
     return FRF(f, u_v, rail, force, dofs, wheels=wheels)
+
+
+def load_compiled_kernels() -> bool:
+    """Load the compiled kernels of :func:`frf_case_stack` into this process, if installed.
+
+    One two-frequency case of the default preset is solved on them (the wave kernel and
+    the coupled point kernel, with the argument types of a sweep's chunk), so that numba
+    loads their machine code from its on-disk cache (or compiles it, the first time).
+
+    Returns
+    -------
+    bool
+        False where numba is not installed or ``RAILVIB_COMPILED=0`` turns the kernels
+        off (nothing is loaded).
+    """
+    if not use_compiled(LOADED_MIN_POINTS, work=COMPILED_MIN_POINTS):
+        return False
+    system = build_system(load_preset_case())
+    frf_case_stack(np.array([10.0, 20.0]), [system], compiled=True)
+    return True
 
 
 def frf_pad_stack(

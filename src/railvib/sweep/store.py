@@ -24,6 +24,7 @@ import os
 import re
 import shutil
 import tempfile
+import threading
 import warnings
 import zipfile
 from collections.abc import Iterator
@@ -49,6 +50,7 @@ from railvib.sweep.folder import (
 )
 from railvib.sweep.layout import SweepLayout
 from railvib.sweep.spec import SweepSpec
+from railvib.sweep.zarrchunks import ChunkFiles
 
 __all__ = [
     "CSV_NAME",
@@ -113,6 +115,16 @@ def remove_leftovers(root: str | Path) -> list[Path]:
 async def _gather(writes: list[Any]) -> None:
     """Await the coroutines `writes` together (zarr writes of one chunk)."""
     await asyncio.gather(*writes)
+
+
+def _import_store_libraries() -> None:
+    """Import what writing the Zarr store needs (zarr, and Dask where installed)."""
+    import zarr  # noqa: F401  (imported ahead of its use in ChunkStore._open_zarr)
+
+    try:
+        import dask.array  # noqa: F401
+    except ImportError:
+        pass
 
 
 def _remove(path: Path) -> None:
@@ -274,6 +286,7 @@ class ChunkStore:
         self._stream = False  # write() streams into the Zarr store (begin_zarr)
         self._zarr: Any = None  # the Zarr group being filled, or None
         self._arrays: dict[str, Any] = {}  # its variables (zarr.AsyncArray), by name
+        self._files: dict[str, ChunkFiles | None] = {}  # their chunk files, where direct
         self._sync: Any = None  # zarr's runner of a coroutine on its I/O loop
         self._zarr_dir: Path | None = None
         self._dims: dict[str, tuple[str, ...]] = {}
@@ -500,9 +513,11 @@ class ChunkStore:
         sweep is held); then each chunk is compressed and written as it arrives, while
         the workers compute the next, and the parent holds one chunk at a time.
         :meth:`finish_zarr` adds the chunks finished by an earlier run and moves the
-        store into place.
+        store into place. Zarr and Dask are imported now, in a thread of their own, while
+        the workers start (their imports are most of the layout's cost).
         """
         self._stream = True
+        threading.Thread(target=_import_store_libraries, name="railvib-zarr-import").start()
 
     def _open_zarr(self, example: dict[str, NDArray[Any]]) -> None:
         """Write the store's layout, shaped and typed after one chunk's `example` arrays.
@@ -536,6 +551,7 @@ class ChunkStore:
         self._zarr = zarr.open_group(str(tmp / "store"), mode="r+")
         self._dims = {str(name): tuple(map(str, v.dims)) for name, v in template.data_vars.items()}
         self._arrays = {name: self._zarr[name].async_array for name in self._dims}
+        self._files = {name: ChunkFiles.of(self._zarr[name]) for name in self._dims}
         self._sync = sync
 
     def _encoding(self, ds: xr.Dataset) -> dict[str, dict[str, Any]]:
@@ -548,9 +564,12 @@ class ChunkStore:
     def _write_region(self, chunk_id: int, arrays: dict[str, NDArray[Any]]) -> None:
         """Write one chunk's arrays into their block of every Zarr variable.
 
-        All the variables' blocks are written in one call on zarr's I/O loop (gathered
-        coroutines): written one by one, each small summary variable costs about a
-        millisecond of zarr's synchronisation, two thirds of a chunk's writing.
+        A chunk is one Zarr chunk of each variable: each is encoded and written as its
+        file (:class:`railvib.sweep.zarrchunks.ChunkFiles`). Any other (a store
+        :class:`~railvib.sweep.zarrchunks.ChunkFiles` does not cover) goes through zarr,
+        all such blocks in one call on zarr's I/O loop (gathered coroutines): written
+        one by one, each small variable costs about a millisecond of zarr's
+        synchronisation.
         """
         if self._zarr is None:
             self._open_zarr(arrays)
@@ -566,8 +585,12 @@ class ChunkStore:
             own = dims[: len(dims) - n]  # the variable's own dims, then the sweep's
             order = [n + i for i in range(len(own))] + list(range(n))
             where = tuple(sl.get(d, slice(None)) for d in dims)
-            writes.append(self._arrays[name].setitem(where, np.transpose(block, order)))
-        self._sync(_gather(writes))
+            block = np.transpose(block, order)
+            files = self._files[name]
+            if files is None or not files.write(where, block):
+                writes.append(self._arrays[name].setitem(where, block))
+        if writes:
+            self._sync(_gather(writes))
         self._streamed.add(chunk_id)
 
     @contextmanager
@@ -596,6 +619,7 @@ class ChunkStore:
             shutil.rmtree(self._zarr_dir, ignore_errors=True)
         self._zarr = self._zarr_dir = None
         self._arrays = {}
+        self._files = {}
         self._stream = False
         self._streamed = set()
 
