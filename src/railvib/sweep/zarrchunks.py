@@ -120,10 +120,10 @@ class ChunkFiles:
             full = np.full(self.chunks, fill, dtype=self.dtype)
             full[tuple(slice(0, k) for k in chunk.shape)] = chunk
             chunk = full
-        data = chunk.tobytes() if self.compressor is None else self.compressor.encode(chunk)
+        data = chunk if self.compressor is None else self.compressor.encode(chunk)
         path = self.folder / self.separator.join(map(str, index))
         if self.separator == "/":
             path.parent.mkdir(parents=True, exist_ok=True)
         with open(path, "wb") as fh:
-            fh.write(data)
+            fh.write(memoryview(data).cast("B") if isinstance(data, np.ndarray) else data)
         return True
