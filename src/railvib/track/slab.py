@@ -832,6 +832,8 @@ class FloatingSlabTrack(SlabTrack):
         As :class:`SlabTrack` (fasteners at ``x = n d``; spacing in m, temperature in degC).
     slab_bending_stiffness, slab_mass_per_length, slab_loss_factor : float
         As :class:`SlabTrack` (N m^2, kg/m, -).
+    slab_damping_time : float
+        As :class:`SlabTrack` (s; ``railvib validate``'s viscous slab).
     foundation, bearing : PadModel, optional
         As :class:`SlabTrack` (N/m^2, N/m).
     bearing_spacing_fasteners : int
@@ -895,6 +897,8 @@ class UnitSlabTrack(SlabTrack):
         As :class:`SlabTrack` (spacing in m, temperature in degC).
     slab_bending_stiffness, slab_mass_per_length, slab_loss_factor : float
         As :class:`SlabTrack` (N m^2, kg/m, -).
+    slab_damping_time : float
+        As :class:`SlabTrack` (s; ``railvib validate``'s viscous slab).
     foundation, bearing : PadModel, optional
         As :class:`SlabTrack` (N/m^2, N/m; bearings under every fastener).
     slab_length : float
