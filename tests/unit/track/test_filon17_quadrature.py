@@ -207,3 +207,63 @@ def test_default_car_gaps_share_the_gap_zero_nodes():
     # (888 -> 890 a frequency on 200 frequencies); the rule with the oscillation inside
     # took 3600 (4 times as many)
     assert counts["car"] < 1.05 * counts["zero"]
+
+
+def _random_panels(n, seed):
+    """Panels over |k| < 60 rad/m, widths 1e-4..2 rad/m, load frequencies 0-2 kHz."""
+    rng = np.random.default_rng(seed)
+    mid, half = rng.uniform(-60.0, 60.0, n), rng.uniform(1e-4, 2.0, n)
+    half[: n // 2] = half[0]  # shared widths, as the bisection makes them
+    omega_load = 2.0 * np.pi * rng.uniform(0.0, 2000.0, n)
+    k = mid[:, None] + half[:, None] * kernel.NODES
+    support = 5e7 + 1j * 5e4 * (omega_load[:, None] - k * 30.0)
+    return mid, half, omega_load, support
+
+
+RAIL = (6.62e6, 60.64, 1e-2, 0.6)
+SHIFT = 2.0 * np.pi * np.arange(-3, 4) / 0.6
+
+
+def test_python_node_loop_at_the_gaps_equals_numpy_rules():
+    """The source numba compiles (table of weights per width, phase per panel), as Python."""
+    mid, half, omega_load, support = _random_panels(6, seed=3)
+    ref, ref_error = kernel.panel_rules(mid, half, omega_load, support, 30.0, RAIL, SHIFT, GAPS)
+    rule, error = np.empty_like(ref), np.empty_like(ref_error)
+    kernel._panels(
+        mid, half, omega_load, support, 30.0, *RAIL, 0.0, 0.0, SHIFT,
+        *kernel._filon_table(half, GAPS), GAPS, True, kernel.NODES, kernel._KRONROD, kernel._GAUSS,
+        kernel.OMEGA_FLOOR, kernel._D1_SERIES, kernel._CSC2_SERIES, rule, error,
+    )  # fmt: skip
+    # the same formulas, sums in another order (rounding; the NumPy rules' own checks in
+    # test_moving_kernel.py allow 1e-11 for the lattice sum's near-singular denominators)
+    assert np.abs(rule - ref).max() < 1e-11 * np.abs(ref).max()
+    np.testing.assert_allclose(error, ref_error, rtol=1e-6, atol=1e-11 * np.abs(ref).max())
+
+
+def test_compiled_rules_at_the_gaps_equal_numpy_rules():
+    pytest.importorskip("numba")
+    if not kernel.compiled_available():
+        pytest.skip("RAILVIB_COMPILED=0")
+    mid, half, omega_load, support = _random_panels(200, seed=4)
+    args = (mid, half, omega_load, support, 30.0, RAIL, SHIFT, GAPS)
+    ref, ref_error = kernel.panel_rules(*args)
+    rule, error = kernel.panel_rules(*args, compiled=True)
+    # rounding, reassociated by fast-math (as above)
+    assert np.abs(rule - ref).max() < 1e-11 * np.abs(ref).max()
+    np.testing.assert_allclose(error, ref_error, rtol=1e-6, atol=1e-11 * np.abs(ref).max())
+
+
+@pytest.mark.slow
+def test_compiled_receptance_at_the_gaps_equals_the_adaptive_rule():
+    """The numba kernel (from 64 frequencies) at the car's gaps, against the reference."""
+    pytest.importorskip("numba")
+    if not kernel.compiled_available():
+        pytest.skip("RAILVIB_COMPILED=0")
+    f = np.linspace(0.0, 1200.0, 64)
+    res = moving_load_receptance(
+        NORDBORG, f, 40.0, order=3, r=GAPS, tolerance=0.5, quadrature_tolerance=1e-10
+    )
+    for i in (0, 9, 40, 63):
+        ref = _reference(NORDBORG, f[i], 40.0, 5, GAPS, 1e-10)[:, 2:-2]
+        # as test_filon_equals_the_adaptive_rule_with_the_oscillation_inside
+        assert np.abs(res.amplitudes[i] - ref).max() < 1e-8 * np.abs(ref).max()
