@@ -14,9 +14,11 @@ stationary case (``CoupledSystem.frf`` on the whole grid), for harmonic orders 1
 
 Then ``railvib.track.moving.moving_load_receptance`` alone for the paper's rigid-base
 track at ``v = 80 km/h`` on a 1 Hz - 2 kHz grid, for harmonic orders 0, 2, 5, 10 (each
-computes two harmonics more, for its order check), on the numba kernel (and NumPy with
-``--numpy``), against ``PeriodicTrack.receptance`` (wheel above mid-span), scaled to
-10^4 frequencies from ``--kernel-n``.
+computes two harmonics more, for its order check), under the load (``r = 0``) and, at
+``|n| <= 5``, at the 9 distinct gaps between the default car's 4 wheels (0 to +-14.8 m:
+what the coupled case asks of it at every load frequency), on the numba kernel (and
+NumPy with ``--numpy``), against ``PeriodicTrack.receptance`` (wheel above mid-span),
+scaled to 10^4 frequencies from ``--kernel-n``.
 
 Times are CPU seconds of this process (``time.process_time``: the machine may be shared;
 the load average is printed), the minimum and the median of ``--repeat`` runs after one
@@ -58,7 +60,7 @@ def _times(fn, repeat: int) -> tuple[float, float]:
     return min(runs), float(np.median(runs))
 
 
-def _nodes(track, f, speed, order) -> float:
+def _nodes(track, f, speed, order, r=(0.0,)) -> float:
     """Wavenumber nodes a frequency used (15 per panel visited)."""
     counted = []
     original = moving.panel_rules
@@ -69,7 +71,7 @@ def _nodes(track, f, speed, order) -> float:
 
     moving.panel_rules = counting
     try:
-        moving_load_receptance(track, f, speed, order=order, tolerance=0.5)
+        moving_load_receptance(track, f, speed, order=order, r=r, tolerance=0.5)
     finally:
         moving.panel_rules = original
     return 15.0 * sum(counted) / f.size
@@ -111,6 +113,8 @@ def kernel(n: int, repeat: int, numpy: bool) -> None:
     """The moving-load receptance alone, against the stationary receptance."""
     track = PeriodicTrack(Rail(6.62e6, 60.64), SpringDamper(5e7, 5e4), 0.6)
     speed = 80 / 3.6
+    x = build_system(load_preset_case()).wheel_positions
+    gaps = np.unique(np.round(x[:, None] - x[None, :], 9))
     f = np.geomspace(1.0, 2000.0, n)
     scale = N_GOAL / n
     stat_min, stat_med = (
@@ -139,6 +143,21 @@ def kernel(n: int, repeat: int, numpy: bool) -> None:
                 f"frequency), {N_GOAL} frequencies: min {low:7.2f} s, median {mid:7.2f} s "
                 f"({low / stat_min:5.0f} x stationary)"
             )
+        low, mid = (
+            t * scale
+            for t in _times(
+                lambda c=compiled: moving_load_receptance(
+                    track, f, speed, order=5, r=gaps, tolerance=0.5, compiled=c
+                ),
+                repeat,
+            )
+        )
+        nodes = _nodes(track, f, speed, 5, gaps)
+        print(
+            f"{name} |n| <=  5 at the car's {gaps.size} gaps ({nodes:5.0f} nodes a frequency), "
+            f"{N_GOAL} frequencies: min {low:7.2f} s, median {mid:7.2f} s "
+            f"({low / stat_min:5.0f} x stationary)"
+        )
 
 
 def main() -> None:

@@ -404,11 +404,14 @@ def _integrate(
     """Adaptive Gauss-Kronrod integral, each frequency refining its own panels.
 
     Every frequency starts from the shared `panels` ``(a, b)``; each panel is integrated
-    by the 15-point Kronrod rule with the embedded 7-point Gauss rule as its error
-    estimate (:func:`~railvib.track.moving_kernel.panel_rules`, compiled or not:
-    ``method = (compiled, tolerance)``), and a panel whose estimate exceeds `tolerance` of
-    the largest harmonic at its own frequency is bisected, up to :data:`_MAX_LEVELS`
-    times. Returns the harmonics and the error estimate left (relative, per frequency).
+    by the 15-point Kronrod rule (Filon's rule on its nodes where ``r != 0``: the
+    oscillating ``exp(i k r)`` integrated exactly) with the embedded 7-point Gauss rule on
+    the ``r = 0`` integrand as its error estimate
+    (:func:`~railvib.track.moving_kernel.panel_rules`, compiled or not: ``method =
+    (compiled, tolerance)``), and a panel whose estimate exceeds `tolerance` of the largest
+    harmonic at its own frequency is bisected, up to :data:`_MAX_LEVELS` times: every
+    observation point costs the nodes of ``r = 0``. Returns the harmonics and the error
+    estimate left (relative, per frequency).
     """
     compiled, tolerance = method
     rail = track.rail

@@ -1,9 +1,15 @@
-"""Gauss-Kronrod rules of the moving-load wavenumber integrand on a list of panels.
+"""Gauss-Kronrod-Filon rules of the moving-load wavenumber integrand on a list of panels.
 
 :func:`panel_rules` is the kernel of :func:`railvib.track.moving.moving_load_receptance`:
 for every panel ``[a, b]`` (each with its own load frequency) it integrates the integrand
-``exp(i k r) G_n (delta_n0 - K w_0 / d)`` by the 15-point Kronrod rule and returns the
-difference to the embedded 7-point Gauss rule as the error estimate. Two implementations
+``exp(i k r) G_n (delta_n0 - K w_0 / d)``: the smooth factor ``G_n (delta_n0 - K w_0 / d)``
+at the 15 Kronrod nodes, interpolated by its polynomial of degree 14 there, times the
+oscillating ``exp(i k r)`` integrated exactly (Filon's rule, :func:`filon_weights`: the
+15-point Kronrod rule itself at ``r = 0``), and returns the difference of the Kronrod rule
+to the embedded 7-point Gauss rule on the smooth factor (the ``r = 0`` integrand) as the
+error estimate: the refinement resolves the integrand once for every observation point,
+however far ahead (the gaps between the wheels of a vehicle, up to ~15 m, whose
+``exp(i k r)`` would otherwise drive the bisection). Two implementations
 give the same numbers (to rounding): NumPy, vectorised over all nodes (the reference and
 the fallback), and the same algorithm written node by node (:func:`_panels`), which numba
 compiles into one loop with every intermediate a scalar in registers (no arrays of nodes
@@ -20,12 +26,19 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.special import spherical_jn
 
 from railvib.jit import numba_jit
 from railvib.track.beam import _SERIES_TERMS, _SERIES_WAVENUMBER2, _odd_divided_difference, _over
 from railvib.track.timoshenko import wavenumbers
 
-__all__ = ["compiled_available", "lattice_sum", "panel_rules", "timoshenko_lattice_sum"]
+__all__ = [
+    "compiled_available",
+    "filon_weights",
+    "lattice_sum",
+    "panel_rules",
+    "timoshenko_lattice_sum",
+]
 
 #: Gauss-Kronrod 7-15 nodes on [0, 1] of the half panel and weights (QUADPACK qk15)
 _XGK = np.array(
@@ -69,6 +82,18 @@ _WG = np.array(
 NODES = np.concatenate([-_XGK[:-1], _XGK[::-1]])
 _KRONROD = np.concatenate([_WGK[:-1], _WGK[::-1]])
 _GAUSS = np.concatenate([_WG[:-1], _WG[::-1]])
+
+#: ``V^-1``, ``V[q, j] = P_j(t_q)`` the Legendre polynomials of degree 0..14 at the 15
+#: nodes (condition number 6.4): the coefficients of the interpolating polynomial are
+#: ``V^-1 f(t_q)``
+_LEGENDRE_INVERSE = np.linalg.inv(np.polynomial.legendre.legvander(NODES, NODES.size - 1))
+
+#: ``2 i^j``, j = 0..14: ``int_-1^1 P_j(t) exp(i w t) dt = 2 i^j j_j(w)`` (spherical Bessel)
+_LEGENDRE_MOMENT = 2.0 * 1j ** np.arange(NODES.size)
+
+#: panel half widths within this relative difference share their Filon weights (bisection
+#: gives a few distinct widths a level, equal to rounding)
+_SAME_WIDTH = 1e-13
 
 #: ``1 / (4 j + 3)!``, j = 0..3: the series of ``(sinh z - sin z) / (2 z^3)`` in ``z^4``
 _S3_SERIES = (1.0 / 6.0, 1.0 / 5040.0, 1.0 / 39916800.0, 1.0 / 1.307674368e12)
@@ -172,16 +197,20 @@ def panel_rules(
     Returns
     -------
     rule : numpy.ndarray
-        ``int exp(i k r) G_n (delta_n0 - K w_0 / d) dk`` over each panel by the Kronrod
-        rule, m/N, ``(n_panel, n_obs, n_harm)`` (the phase ``exp(i 2 pi n r / d)`` and the
-        ``1 / 2 pi`` are left to the caller).
+        ``int exp(i k r) G_n (delta_n0 - K w_0 / d) dk`` over each panel by the Filon rule
+        on the Kronrod nodes (:func:`filon_weights`; the Kronrod rule at ``r = 0``), m/N,
+        ``(n_panel, n_obs, n_harm)`` (the phase ``exp(i 2 pi n r / d)`` and the ``1 / 2 pi``
+        are left to the caller).
     error : numpy.ndarray
-        ``max |Kronrod - Gauss|`` over observation points and harmonics, m/N, ``(n_panel,)``.
+        ``max |Kronrod - Gauss|`` of ``int G_n (delta_n0 - K w_0 / d) dk`` (the ``r = 0``
+        integrand) over the harmonics, m/N, ``(n_panel,)``.
     """
     n_panel = mid.size
     rule = np.empty((n_panel, r.size, shift.size), dtype=np.complex128)
     error = np.empty(n_panel)
+    oscillating = bool(np.any(r != 0.0))
     if compiled:
+        group, table = _filon_table(half, r)
         _kernel()(
             np.ascontiguousarray(mid, dtype=np.float64),
             np.ascontiguousarray(half, dtype=np.float64),
@@ -191,7 +220,10 @@ def panel_rules(
             *(float(x) for x in rail),
             *((0.0, 0.0) if len(rail) == 4 else ()),  # shear 0: an Euler rail
             np.ascontiguousarray(shift, dtype=np.float64),
+            group,
+            table,
             np.ascontiguousarray(r, dtype=np.float64),
+            oscillating,
             NODES,
             _KRONROD,
             _GAUSS,
@@ -204,12 +236,70 @@ def panel_rules(
         return rule, error
     k = mid[:, None] + half[:, None] * NODES[None, :]  # (n_panel, 15)
     values = integrand(k, omega_load[:, None] - k * speed, support, rail, shift)
-    phase = np.exp(1j * k[:, :, None] * r[None, None, :])  # (n_panel, 15, n_obs)
-    weights = np.stack([_KRONROD, _GAUSS]) * half[:, None, None]  # (n_panel, 2, 15)
-    rules = np.einsum("pqn,pqr,psq->sprn", values, phase, weights, optimize=True)
-    rule[...] = rules[0]
-    error[...] = np.abs(rules[0] - rules[1]).max(axis=(1, 2), initial=0.0)
+    weights = filon_weights(mid, half, r)
+    rule[...] = np.einsum("pqn,poq->pon", values, weights, optimize=True)
+    difference = (_KRONROD - _GAUSS) * np.stack([np.ones(NODES.size), NODES])[: 1 + oscillating]
+    smooth = np.einsum("pqn,sq->psn", values, difference) * half[:, None, None]
+    error[...] = np.abs(smooth).max(axis=(1, 2), initial=0.0)
     return rule, error
+
+
+def filon_weights(
+    mid: NDArray[np.float64], half: NDArray[np.float64], r: NDArray[np.float64]
+) -> NDArray[np.complex128]:
+    """Weights of ``int exp(i k r) g(k) dk`` over each panel from ``g`` at its 15 nodes, m^-1.
+
+    ``g`` is replaced by its interpolating polynomial at the nodes ``mid + half t_q``
+    (degree 14, in the Legendre basis: ``V^-1``), whose product with ``exp(i k r)`` is
+    integrated exactly (Filon's rule)::
+
+        int exp(i k r) g dk = half exp(i mid r) sum_q w_q(half r) g(k_q),
+        w_q(w) = sum_j (V^-1)_jq 2 i^j j_j(w),
+
+    ``j_j`` the spherical Bessel functions; at ``r = 0`` they are the Kronrod weights (the
+    Kronrod rule is interpolatory), taken as such. Exact for a polynomial ``g`` of degree
+    14 whatever ``half r``, so the oscillation costs no nodes: the error is that of the
+    interpolation of ``g``, which the Kronrod-Gauss estimate of ``int g dk`` measures.
+
+    Parameters
+    ----------
+    mid, half : numpy.ndarray
+        Centre and half width of each panel, rad/m, ``(n_panel,)``.
+    r : numpy.ndarray
+        Observation points ahead of the load, m, ``(n_obs,)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``half exp(i mid r) w_q(half r)``, rad/m, ``(n_panel, n_obs, 15)``.
+    """
+    group, table = _filon_table(half, r)
+    phase = np.exp(1j * mid[:, None] * r[None, :]) * half[:, None]  # (n_panel, n_obs)
+    return np.asarray(table[group] * phase[:, :, None], dtype=np.complex128)
+
+
+def _filon_table(
+    half: NDArray[np.float64], r: NDArray[np.float64]
+) -> tuple[NDArray[np.intp], NDArray[np.complex128]]:
+    """``w_q(half r)`` of :func:`filon_weights` once per distinct half width.
+
+    Returns each panel's index into the table ``(n_panel,)`` and the table ``(n_width,
+    n_obs, 15)`` (bisection gives a few distinct widths a level: the spherical Bessel
+    functions, ~3 us each, are evaluated for those only).
+    """
+    group = np.zeros(half.size, dtype=np.intp)
+    if half.size == 0:
+        return group, np.zeros((1, r.size, NODES.size), dtype=np.complex128)
+    order = np.argsort(half, kind="stable")
+    sorted_half = half[order]
+    new = np.concatenate([[True], np.diff(sorted_half) > _SAME_WIDTH * sorted_half[1:]])
+    group[order] = np.cumsum(new) - 1
+    width = sorted_half[new]  # (n_width,)
+    argument = width[:, None, None] * r[None, :, None]  # (n_width, n_obs, 1)
+    moments = _LEGENDRE_MOMENT * spherical_jn(np.arange(NODES.size), argument)
+    table = np.asarray(moments @ _LEGENDRE_INVERSE, dtype=np.complex128)
+    table[:, r == 0.0, :] = _KRONROD
+    return group, table
 
 
 def integrand(
@@ -438,7 +528,10 @@ def _panels(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compil
     shear: float,
     rotary: float,
     shift: Any,
+    group: Any,
+    table: Any,
     r: Any,
+    oscillating: bool,
     nodes: Any,
     w_kronrod: Any,
     w_gauss: Any,
@@ -452,19 +545,23 @@ def _panels(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compil
 
     ``shear = 0``: an Euler rail; else a Timoshenko rail (:func:`timoshenko_lattice_sum`,
     with the coefficients `series` of its divided difference ``D1``; `csc2`: those of
-    :func:`_inverse_square_images`).
+    :func:`_inverse_square_images`). `table[group[p]]`: the Filon weights ``w_q(half r)``
+    of panel ``p`` (:func:`_filon_table`), ``(n_obs, 15)``; `oscillating`: some ``r != 0``
+    (the error estimate then also takes the first moment, whose odd part ``r = 0`` hides).
     """
     n_harm, n_obs = shift.size, r.size
     d4 = d**4
-    gauss = np.empty((n_obs, n_harm), dtype=np.complex128)
+    values = np.empty((nodes.size, n_harm), dtype=np.complex128)
+    smooth = np.empty(n_harm, dtype=np.complex128)
+    moment = np.empty(n_harm, dtype=np.complex128)
     value = np.empty(n_harm, dtype=np.complex128)
     ei_pos = ei * complex(1.0, eta)  # hysteretic: EI (1 - i eta) at omega < 0
     inv_pos = 1.0 / ei_pos
     timoshenko = shear > 0.0
     eps = ei / (shear * d * d) if timoshenko else 0.0  # EI* / kGA* d^2: the loss cancels
     for p in range(mid.size):
-        rule[p, :, :] = 0.0
-        gauss[:, :] = 0.0
+        smooth[:] = 0.0
+        moment[:] = 0.0
         for q in range(nodes.size):
             k = mid[p] + half[p] * nodes[q]
             omega = omega_load[p] - k * speed
@@ -570,18 +667,25 @@ def _panels(  # noqa: C901, PLR0912, PLR0913, PLR0915 - one loop body the compil
                 else:
                     den = tn2 * tn2 - beta4
                 value[n] = scale * numerator_n * den.conjugate() / (den.real**2 + den.imag**2)
-            wk, wg = w_kronrod[q] * half[p], w_gauss[q] * half[p]
-            for o in range(n_obs):
-                phase = 1.0 + 0j if r[o] == 0.0 else complex(math.cos(k * r[o]), math.sin(k * r[o]))
-                wk_phase = wk * phase
-                for n in range(n_harm):
-                    rule[p, o, n] += wk_phase * value[n]
-                if wg != 0.0:  # the Gauss rule uses every other node
-                    wg_phase = wg * phase
-                    for n in range(n_harm):
-                        gauss[o, n] += wg_phase * value[n]
-        worst = 0.0
-        for o in range(n_obs):
             for n in range(n_harm):
-                worst = max(worst, abs(rule[p, o, n] - gauss[o, n]))
+                values[q, n] = value[n]
+            w_diff = (w_kronrod[q] - w_gauss[q]) * half[p]  # Kronrod - Gauss, r = 0
+            w_odd = w_diff * nodes[q]  # ... and of the first moment
+            for n in range(n_harm):
+                smooth[n] += w_diff * value[n]
+                moment[n] += w_odd * value[n]
+        weights = table[group[p]]
+        for o in range(n_obs):
+            kr = mid[p] * r[o]
+            phase = half[p] * (1.0 + 0j if r[o] == 0.0 else complex(math.cos(kr), math.sin(kr)))
+            for n in range(n_harm):
+                acc = 0.0 + 0j
+                for q in range(nodes.size):
+                    acc += weights[o, q] * values[q, n]
+                rule[p, o, n] = phase * acc
+        worst = 0.0
+        for n in range(n_harm):
+            worst = max(worst, abs(smooth[n]))
+            if oscillating:
+                worst = max(worst, abs(moment[n]))
         error[p] = worst

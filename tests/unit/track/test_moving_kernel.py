@@ -56,7 +56,8 @@ def test_python_node_loop_equals_numpy_rules():
     rule = np.empty_like(ref_rule)
     error = np.empty_like(ref_error)
     kernel._panels(
-        mid, half, omega_load, support, 30.0, *RAIL, 0.0, 0.0, SHIFT, R, kernel.NODES,
+        mid, half, omega_load, support, 30.0, *RAIL, 0.0, 0.0, SHIFT,
+        *kernel._filon_table(half, R), R, True, kernel.NODES,
         kernel._KRONROD, kernel._GAUSS, kernel.OMEGA_FLOOR, kernel._D1_SERIES,
         kernel._CSC2_SERIES, rule, error,
     )  # fmt: skip

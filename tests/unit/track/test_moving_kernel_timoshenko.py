@@ -142,7 +142,8 @@ def test_python_node_loop_equals_numpy_rules():
     ref, _ = kernel.panel_rules(mid, half, omega_load, support, 30.0, rail, shift, r)
     rule, error = np.empty_like(ref), np.empty(n)
     kernel._panels(
-        mid, half, omega_load, support, 30.0, *rail, shift, r, kernel.NODES,
+        mid, half, omega_load, support, 30.0, *rail, shift,
+        *kernel._filon_table(half, r), r, True, kernel.NODES,
         kernel._KRONROD, kernel._GAUSS, kernel.OMEGA_FLOOR, kernel._D1_SERIES,
         kernel._CSC2_SERIES, rule, error,
     )  # fmt: skip
