@@ -53,7 +53,7 @@ MOVING_FILES = (
 )
 
 #: more moving-load frequencies ((2N+1) x grid points) than this and a run warns of its
-#: cost (some 4 ms of CPU each for a 4-wheel car, numba kernel: over a minute at this count)
+#: cost (some 2 ms of CPU each for a 4-wheel car, numba kernel: most of a minute at this count)
 MANY_LOAD_FREQUENCIES = 20_000
 
 #: a band whose moving and stationary mean squares differ by less than this (dB) is one
@@ -86,7 +86,7 @@ def _prepared(
                 "frequency",
                 f"{grid.f.size} frequencies",
                 f"x {2 * settings.harmonic_order + 1} harmonics = {loads} moving-load "
-                "frequencies, some 4 ms of CPU each for 4 wheels (docs/moving-vehicle.md, Cost): "
+                "frequencies, some 2 ms of CPU each for 4 wheels (docs/moving-vehicle.md, Cost): "
                 "a log grid of a few hundred points is usually enough",
             ),
             stacklevel=2,
