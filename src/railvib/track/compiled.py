@@ -116,7 +116,7 @@ def _kernel() -> Any:
     if not _KERNEL:
         # error_model="numpy": a division by zero gives inf instead of raising, so the
         # divisions carry no branch (one would stop LLVM vectorising the stage)
-        jit = numba_jit(error_model="numpy")
+        jit = numba_jit(error_model="numpy", fastmath={"contract"})
         _KERNEL.append(None if jit is None else jit(_points))
     return _KERNEL[0]
 
@@ -228,13 +228,17 @@ _ACC = 10 * _B  # Horner sums and binary powers (4 complex)
 _ZETA = 18 * _B  # a series' argument
 _INV = 20 * _B  # entry (r, c) of the matching's inverse at _INV + 2 (4 r + c) _B
 _COND = 52 * _B  # the matching's condition estimate
-_ROWS = 53
-# rows of each of the two waves' array (wave v from v * _WAVE)
-_MS = 0 * _B  # its |mu| <= 1 candidate
-_MB = 2 * _B  # and the inverse
-_MU = 4 * _B  # the right-going wave's propagation constant
-_RV = 6 * _B  # component c of the right-going wave at _RV + 2 c _B
-_WAVE = 14 * _B
+_WAVE_MU = 53 * _B  # the current wave's two candidates (mu, 1/mu)
+_WAVE_OUT = 57 * _B  # its propagation constant and vector (as a wave's rows)
+_ROWS = 67
+# rows of the two waves' candidates (wave v from v * _CAND) and of the right-going waves
+# (from v * _WAVE), two arrays: a stage reading one and writing the other vectorises
+_MS = 0 * _B  # the |mu| <= 1 candidate
+_MB = 2 * _B  # and its inverse
+_CAND = 4 * _B
+_MU = 0 * _B  # the right-going wave's propagation constant
+_RV = 2 * _B  # component c of the right-going wave at _RV + 2 c _B
+_WAVE = 10 * _B
 
 
 def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written out
@@ -275,6 +279,7 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
     n_x, n_xi, n_eta, n_pow = x_pow.shape[0], xi_u.shape[0], eta_u.shape[0], exponents.shape[0]
     n_obs, n_load = out.shape[1], out.shape[2]
     w = np.zeros(_ROWS * _B)
+    cand = np.zeros(2 * _CAND)
     wv = np.zeros(2 * _WAVE)
     # the geometry's rows: Krylov functions s_j at each coordinate, amplitudes of a load at
     # each load coordinate, each wave's displacement at each observation coordinate, mu^e
@@ -282,6 +287,9 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
     am = np.zeros(8 * n_xi * _B)
     dp = np.zeros(8 * n_eta * _B)
     mp = np.zeros(4 * n_pow * _B)
+    n_ent = n_obs * n_load
+    ent = np.zeros(2 * n_ent * _B)
+    flat = out.reshape((n_points, n_ent))
     pivot2 = pivot_threshold**2  # magnitudes compared squared: no hypot
     for start in range(0, n_points, _B):
         n = min(_B, n_points - start)
@@ -399,7 +407,7 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
             large = lam_big + root
             lr, li = 0.5 * large.real, 0.5 * large.imag
             den = 1.0 / (lr * lr + li * li)
-            wv[_MS + i], wv[_MS + _B + i], wv[_MB + i], wv[_MB + _B + i] = (
+            cand[_MS + i], cand[_MS + _B + i], cand[_MB + i], cand[_MB + _B + i] = (
                 lr * den,
                 -li * den,
                 lr,
@@ -414,9 +422,8 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
             large = lam_small + root
             lr, li = 0.5 * large.real, 0.5 * large.imag
             den = 1.0 / (lr * lr + li * li)
-            o = _WAVE
-            wv[o + _MS + i], wv[o + _MS + _B + i] = lr * den, -li * den
-            wv[o + _MB + i], wv[o + _MB + _B + i] = lr, li
+            cand[_CAND + _MS + i], cand[_CAND + _MS + _B + i] = lr * den, -li * den
+            cand[_CAND + _MB + i], cand[_CAND + _MB + _B + i] = lr, li
         # -- the Krylov functions at each local coordinate, the half bay's first
         for q in range(n_x):
             x = x_pow[q, 0]
@@ -479,7 +486,11 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
         # -- Bloch vectors of the half-bay pencil (_bloch_vector), energy-flow sorting
         half = 8 * series[0] * _B
         for wave in range(2):
-            o = wave * _WAVE
+            o, oc = wave * _WAVE, wave * _CAND
+            for i in range(n):  # its candidates at fixed rows: their loads then vectorise
+                w[_WAVE_MU + i], w[_WAVE_MU + _B + i] = cand[oc + _MS + i], cand[oc + _MS + _B + i]
+                w[_WAVE_MU + 2 * _B + i] = cand[oc + _MB + i]
+                w[_WAVE_MU + 3 * _B + i] = cand[oc + _MB + _B + i]
             for i in range(n):
                 b = complex(w[_BETA + i], w[_BETA + _B + i])
                 k = complex(w[_PAD + i], w[_PAD + _B + i])
@@ -487,7 +498,7 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
                 s1 = complex(kr[half + 2 * _B + i], kr[half + 3 * _B + i])
                 s2 = complex(kr[half + 4 * _B + i], kr[half + 5 * _B + i])
                 s3 = complex(kr[half + 6 * _B + i], kr[half + 7 * _B + i])
-                ms = complex(wv[o + _MS + i], wv[o + _MS + _B + i])
+                ms = complex(w[_WAVE_MU + i], w[_WAVE_MU + _B + i])
                 bs1, bs2, bs3 = b * s1, b * s2, b * s3
                 # m = B(1/2) - mu M B(1/2) M (M = diag(1, -1, 1, -1), the pad in column 0):
                 # B(1/2) is Toeplitz (s_j above the diagonal, beta4 s_j below), so is m but
@@ -549,21 +560,24 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
                 )
                 if nc > na:
                     a0, a1, a2, a3, na = c0, c1, c2, c3, nc
-                if na < weak_cross:
-                    w[_FLAG + i] = 1.0
+                w[_FLAG + i] = max(w[_FLAG + i], 1.0 if na < weak_cross else 0.0)
                 sc = 1.0 / na  # a real scale: multiplied, not a complex division
                 v0, v1, v2, v3 = a0 * sc, a1 * sc, a2 * sc, a3 * sc
                 # energy-flow sorting near |mu| = 1: the right-going wave of the pair
                 flux = (v3 * v0.conjugate() - v2 * v1.conjugate()).imag
-                mu = ms
-                if abs(math.sqrt(ms.real**2 + ms.imag**2) - 1.0) < energy_tol and flux < 0:
-                    mu = complex(wv[o + _MB + i], wv[o + _MB + _B + i])
-                    v1, v3 = -v1, -v3 - k * v0
-                wv[o + _MU + i], wv[o + _MU + _B + i] = mu.real, mu.imag
-                wv[o + _RV + i], wv[o + _RV + _B + i] = v0.real, v0.imag
-                wv[o + _RV + 2 * _B + i], wv[o + _RV + 3 * _B + i] = v1.real, v1.imag
-                wv[o + _RV + 4 * _B + i], wv[o + _RV + 5 * _B + i] = v2.real, v2.imag
-                wv[o + _RV + 6 * _B + i], wv[o + _RV + 7 * _B + i] = v3.real, v3.imag
+                mb = complex(w[_WAVE_MU + 2 * _B + i], w[_WAVE_MU + 3 * _B + i])
+                flip = abs(math.sqrt(ms.real**2 + ms.imag**2) - 1.0) < energy_tol and flux < 0
+                mu = mb if flip else ms
+                v1, v3 = (-v1, -v3 - k * v0) if flip else (v1, v3)
+                out_w = _WAVE_OUT
+                w[out_w + _MU + i], w[out_w + _MU + _B + i] = mu.real, mu.imag
+                w[out_w + _RV + i], w[out_w + _RV + _B + i] = v0.real, v0.imag
+                w[out_w + _RV + 2 * _B + i], w[out_w + _RV + 3 * _B + i] = v1.real, v1.imag
+                w[out_w + _RV + 4 * _B + i], w[out_w + _RV + 5 * _B + i] = v2.real, v2.imag
+                w[out_w + _RV + 6 * _B + i], w[out_w + _RV + 7 * _B + i] = v3.real, v3.imag
+            for r in range(10):
+                for i in range(n):
+                    wv[o + r * _B + i] = w[_WAVE_OUT + r * _B + i]
         # -- wave matching [R, -L] (L: the right-going waves mirrored), rows equilibrated,
         # inverted from its LU factors; a weak pivot leaves the point to NumPy
         for i in range(n):
@@ -839,21 +853,27 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
                     m0, m1 = m0 * m0, m1 * m1
                     w[_ACC + i], w[_ACC + _B + i] = m0.real, m0.imag
                     w[_ACC + 2 * _B + i], w[_ACC + 3 * _B + i] = m1.real, m1.imag
-        # -- the entries: each load's two waves carried to each observation point
+        # -- the entries: each load's two waves carried to each observation point (into
+        # the batch's rows, then copied point by point: a scattered store stops LLVM)
         for i_obs in range(n_obs):
             for j in range(n_load):
                 sd = side[i_obs, j]
                 at_a = 8 * load_u[j] * _B + 4 * sd * _B
                 at_m = 4 * power[i_obs, j] * _B
                 at_d = 8 * obs_u[i_obs] * _B + 4 * sd * _B
+                at = 2 * (i_obs * n_load + j) * _B
                 for i in range(n):
-                    out[start + i, i_obs, j] = complex(am[at_a + i], am[at_a + _B + i]) * complex(
+                    v = complex(am[at_a + i], am[at_a + _B + i]) * complex(
                         mp[at_m + i], mp[at_m + _B + i]
                     ) * complex(dp[at_d + i], dp[at_d + _B + i]) + complex(
                         am[at_a + 2 * _B + i], am[at_a + 3 * _B + i]
                     ) * complex(mp[at_m + 2 * _B + i], mp[at_m + 3 * _B + i]) * complex(
                         dp[at_d + 2 * _B + i], dp[at_d + 3 * _B + i]
                     )
+                    ent[at + i], ent[at + _B + i] = v.real, v.imag
+        for i in range(n):
+            for e in range(n_ent):
+                flat[start + i, e] = complex(ent[2 * e * _B + i], ent[(2 * e + 1) * _B + i])
         for i in range(n):
             bad[start + i] = w[_FLAG + i] > 0.0
             condition[start + i] = w[_COND + i]
