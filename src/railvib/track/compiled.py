@@ -1,12 +1,13 @@
 """The Euler rail's waves and receptance compiled (numba), one pass over the points of a stack.
 
 The same algorithm as :mod:`railvib.track.stacked` (the reference, and the fallback),
-written point by point so that numba compiles it into one loop: every intermediate is a
-scalar in registers instead of an entry array of the block, and each point costs its
-few thousand floating-point operations (``docs/design/0006-stacked-batches.md``). The
-points where the reference takes a dense fallback (a Bloch vector from an SVD near a
-band edge of a lossless rail, a wave matching with a weak pivot) are flagged and solved
-again by the NumPy kernel, so results agree with it to rounding everywhere.
+written for a batch of points in structure-of-arrays form (real and imaginary parts in
+rows of float64, a point a lane) so that each stage is one branch-free loop over the
+batch which LLVM turns into vector instructions, eight points at a time with AVX-512
+(``docs/design/0006-stacked-batches.md``). The points where the reference takes a dense
+fallback (a Bloch vector from an SVD near a band edge of a lossless rail, a wave
+matching with a weak pivot) are flagged and solved again by the NumPy kernel, so results
+agree with it to rounding everywhere.
 
 numba is optional (``pip install railvib[fast]``): a sweep whose work reaches
 :data:`COMPILED_MIN_POINTS` points imports it and loads the kernel in each worker
@@ -115,7 +116,9 @@ def _kernel() -> Any:
     """The compiled kernel (numba, cached on disk), or None where numba is not installed."""
     if not _KERNEL:
         # error_model="numpy": a division by zero gives inf instead of raising, so the
-        # divisions carry no branch (one would stop LLVM vectorising the stage)
+        # divisions carry no branch (one would stop LLVM vectorising the stage); fastmath
+        # "contract" only: a * b + c may be one FMA, rounded once instead of twice (no
+        # reassociation, no finite-math or signed-zero assumptions)
         jit = numba_jit(error_model="numpy", fastmath={"contract"})
         _KERNEL.append(None if jit is None else jit(_points))
     return _KERNEL[0]
@@ -212,7 +215,7 @@ def _geometry(x_load: tuple[float, ...], x_obs: tuple[float, ...]) -> tuple[NDAr
 
 
 #: points a batch: each stage of the kernel is a loop over the batch's points that LLVM
-#: vectorises (AVX-512: 8 lanes, unrolled 4 times; a shorter batch runs scalar)
+#: vectorises (8 lanes with AVX-512; the points past the last full vector run scalar)
 _B = 32
 
 # rows of the kernel's work array, each `_B` lanes wide (row r of lane i at r * _B + i; a
@@ -272,7 +275,8 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
     Krylov series longer than `inv_fact`, is flagged in `bad`), so that LLVM turns it into
     vector instructions, four or eight points at a time. The series are summed to the
     longest term count of the batch. Complex division and square roots are written out
-    from real ones (the library's own are calls, which stop vectorisation).
+    from real ones (the library's own are calls, which stop vectorisation); ``c2 - 2``
+    above ``|beta4| = 16`` (real cos, sin, cosh, sinh: libm calls) is the one scalar stage.
     """
     n_points = beta4.shape[0]
     n_fact = inv_fact.shape[0]
