@@ -17,7 +17,7 @@ from railvib.case import Case, build_grid, build_spectrum, build_system, case_he
 from railvib.case.schema import CriteriaSection
 from railvib.coupling import CoupledSystem
 from railvib.errors import CaseError, RailvibDeprecationWarning
-from railvib.grid import FrequencyGrid
+from railvib.grid import FrequencyGrid, trapezoid
 from railvib.io import railvib_version, staged_folder, write_text
 from railvib.outputs import (
     DEFAULT_OUTPUTS,
@@ -36,14 +36,24 @@ from railvib.outputs import (
     octave_table,
     third_octave_bands,
 )
-from railvib.outputs.supports import gives_seat_forces, seat_positions, support_force_variables
+from railvib.outputs.supports import gives_seat_forces, seat_positions, support_force_data
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
 from railvib.plot import OVERVIEW_STEMS
 from railvib.response import FRF
-from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
+from railvib.results.dataset import (
+    assemble,
+    check_finite_variables,
+    open_netcdf,
+    per_frequency_values,
+    result_variables,
+    save_csv,
+    save_netcdf,
+)
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
+from railvib.results.stream import RunningIntegral, netcdf_stream
 from railvib.results.trains import car_table
+from railvib.results.variables import VARIABLES, compute_variables
 from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
@@ -60,6 +70,7 @@ __all__ = [
     "run",
     "run_system",
     "run_to_folder",
+    "stream_to_netcdf",
 ]
 
 
@@ -113,19 +124,160 @@ def run_system(
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
         s_r = spectrum.temporal(f, system.speed)
         pad_k = system.track.pad.stiffness(f, system.track.pad_temperature)
-    extra = {
-        "static_contact_load": xr.DataArray(
-            system.vehicle.static_wheel_loads(),
-            dims=("wheel",),
-            attrs={"units": "N", "long_name": "static contact load"},
+    check = ContactCheck(loss_of_contact_threshold=loss_of_contact_threshold)
+    seats = _seats(system, f)
+    seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        blocks = _kept(system.frf_blocks(f, observe=seats), seat_rail)
+        values, labels, n_wheel = per_frequency_values(f, blocks, s_r)
+    # every variable wrapped, not copied, and the dataset built once at the end
+    data, coords = result_variables(f, labels, n_wheel, values)
+    loads = system.vehicle.static_wheel_loads()
+    data |= _extra(loads, pad_k)
+    check_finite_variables(data, f)  # before the derived outputs, which assume finite PSDs
+    # a slab track gives its bearing forces from the contact forces (its seats share the slab)
+    support, support_coords = support_force_data(
+        system, {"frequency": f, **values}, rail=None if seats is None else seat_rail
+    )
+    data |= support
+    mean_square = trapezoid(values["psd_force"], f, axis=0)
+    data |= check.variables(mean_square, loads, ("wheel",), float(f[0]), float(f[-1]))
+    ds = assemble(data, coords | support_coords, _meta(system, attrs))
+    # the contact check from the arrays above; any other default output and the criteria
+    later = [name for name in DEFAULT_OUTPUTS if name != "contact_check"] + list(criteria or {})
+    return derive(ds, later, criteria) if later else ds
+
+
+def stream_to_netcdf(
+    system: CoupledSystem,
+    grid: FrequencyGrid,
+    spectrum: SpatialSpectrum,
+    path: str | Path,
+    attrs: dict[str, str] | None = None,
+    *,
+    loss_of_contact_threshold: float = LOSS_OF_CONTACT_NOTE,
+    criteria: dict[str, dict[str, Any]] | None = None,
+    block: int | None = None,
+) -> xr.Dataset:
+    """:func:`run_system` written to a netCDF file block by block, for grids too large to hold.
+
+    Each block of frequencies is solved, its variables written to `path` and dropped
+    (:class:`railvib.results.stream.NetCDFStream`), so memory is bounded by the block,
+    not by the grid; the contact check and the support-force RMS are integrated block by
+    block (:class:`railvib.results.stream.RunningIntegral`). The criteria, which need
+    whole spectra, are computed from the written file one variable at a time and added
+    to it. The file is written under a temporary name and renamed at the end: a run that
+    fails or is stopped leaves no half-written file, and an earlier `path` as it was.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track, contact, wheel positions and speed.
+    grid : FrequencyGrid
+        Frequencies (Hz).
+    spectrum : SpatialSpectrum
+        Irregularity spectrum (spatial, one-sided).
+    path : str or pathlib.Path
+        The netCDF file (``results.nc``).
+    attrs : dict, optional
+        Extra global attributes.
+    loss_of_contact_threshold : float
+        Largest probability of loss of contact (dimensionless), as in :func:`run_system`.
+    criteria : dict, optional
+        Derived outputs to add after the contact check, as in :func:`run_system`.
+    block : int, optional
+        Frequencies per block (default: :meth:`railvib.coupling.CoupledSystem.frf_blocks`'s).
+
+    Returns
+    -------
+    xarray.Dataset
+        The variables without a frequency dimension (static loads, the contact check,
+        the support-force RMS, the criteria's), in memory. The file holds the result of
+        :func:`run_system`: :func:`railvib.results.load_netcdf` of it equals
+        :func:`railvib.results.save_netcdf`'s of the result held in memory (the RMS values
+        to rounding: integrated block by block).
+
+    Raises
+    ------
+    railvib.errors.NonFiniteResult
+        A response is NaN or infinite (nothing is left at `path`).
+    railvib.errors.OutputError
+        `path` cannot be written (full disk, read-only folder).
+    """
+    f = grid.f
+    check = ContactCheck(loss_of_contact_threshold=loss_of_contact_threshold)
+    seats = _seats(system, f)
+    loads = system.vehicle.static_wheel_loads()
+    band = (float(f[0]), float(f[-1]))
+    force_ms, support_ms = RunningIntegral(), RunningIntegral()
+    support: dict[str, xr.Variable] = {}
+    with netcdf_stream(path, f.size) as stream:
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
+            for sl, frf in system.frf_blocks(f, block=block, observe=seats):
+                fb = f[sl]
+                s_r = spectrum.temporal(fb, system.speed)
+                values = compute_variables(frf, s_r, VARIABLES)
+                data, coords = result_variables(fb, frf.labels, frf.n_wheel, values)
+                data |= _extra(loads, system.track.pad.stiffness(fb, system.track.pad_temperature))
+                check_finite_variables(data, fb, grid=f)
+                rail = None if seats is None else frf.rail_observed
+                support, support_coords = support_force_data(
+                    system, {"frequency": fb, **values}, rail=rail
+                )
+                data |= support
+                force_ms.add(fb, np.asarray(values["psd_force"], dtype=float))
+                if support:
+                    support_ms.add(fb, support["psd_support_force"].values)
+                if sl.start == 0:  # the layout, with the whole-grid values as placeholders
+                    data |= check.variables(force_ms.total, loads, ("wheel",), *band)
+                    stream.first(assemble(data, coords | support_coords, _meta(system, attrs)))
+                else:
+                    stream.block(sl, {"frequency": fb, **{k: v.values for k, v in data.items()}})
+        whole = check.variables(force_ms.total, loads, ("wheel",), *band)
+        if support:
+            rms = support["support_force_rms"]
+            whole["support_force_rms"] = rms.copy(data=np.sqrt(support_ms.total))
+        stream.finish(whole)
+        later = [name for name in DEFAULT_OUTPUTS if name != "contact_check"] + list(criteria or {})
+        if later:
+            with stream.open() as written:  # the criteria read the complex FRFs too
+                derived = derive(written, later, criteria)
+                added = [k for k in derived.variables if k not in written.variables]
+                new = derived[[k for k in added if k in derived.data_vars]].load()
+            stream.append(new.drop_vars([k for k in new.coords if k not in added]))
+    with open_netcdf(path, drop=_FREQUENCY_VARIABLES) as ds:
+        names = [k for k in ds.data_vars if "frequency" not in ds[k].dims]
+        return ds[names].load()
+
+
+#: the variables the file of a run holds over ``frequency`` besides the criteria's
+_FREQUENCY_VARIABLES = (*VARIABLES, "pad_stiffness", "psd_support_force")
+
+
+def _seats(system: CoupledSystem, f: NDArray[np.float64]) -> NDArray[np.float64] | None:
+    """The rail seats under the wheels, m, where the track gives their forces (else None)."""
+    if gives_seat_forces(system, f):
+        return seat_positions(system.wheel_positions, system.track.sleeper_spacing)
+    return None
+
+
+def _extra(loads: NDArray[np.float64], pad_k: NDArray[np.complex128]) -> dict[str, xr.Variable]:
+    """The static contact loads (N) and the pad stiffness over the grid (N/m) of a run."""
+    return {
+        "static_contact_load": xr.Variable(
+            ("wheel",), loads, {"units": "N", "long_name": "static contact load"}
         ),
-        "pad_stiffness": xr.DataArray(
+        "pad_stiffness": xr.Variable(
+            ("frequency",),
             pad_k,
-            dims=("frequency",),
-            attrs={"units": "N/m", "long_name": "railpad dynamic stiffness K' + iK'' (beam model)"},
+            {"units": "N/m", "long_name": "railpad dynamic stiffness K' + iK'' (beam model)"},
         ),
     }
-    meta = {
+
+
+def _meta(system: CoupledSystem, attrs: dict[str, str] | None) -> dict[str, Any]:
+    """The global attributes of a run of `system`, then `attrs`."""
+    return {
         "railvib_version": railvib_version(),
         "speed_m_per_s": system.speed,
         "contact_stiffness_n_per_m": system.contact_stiffness,
@@ -135,20 +287,6 @@ def run_system(
         "sign_convention": "displacements positive downward; irregularity > 0 is a dip",
         **(attrs or {}),
     }
-    settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
-    # the rail at the seats under the wheels from the same track solve as the contact's
-    seats = None
-    if gives_seat_forces(system, f):
-        seats = seat_positions(system.wheel_positions, system.track.sleeper_spacing)
-    seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        blocks = _kept(system.frf_blocks(f, observe=seats), seat_rail)
-        ds = build_dataset_blocks(f, blocks, s_r, attrs=meta, extra=extra)
-    check_finite(ds)  # before the derived outputs, which assume finite PSDs
-    # a slab track gives its bearing forces from the contact forces (its seats share the slab)
-    ds = ds.assign(support_force_variables(system, ds, rail=None if seats is None else seat_rail))
-    ds = derive(ds, DEFAULT_OUTPUTS, settings)
-    return derive(ds, list(criteria or {}), criteria) if criteria else ds
 
 
 def _kept(

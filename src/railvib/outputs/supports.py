@@ -17,16 +17,23 @@ continuous foundation has no discrete supports and gets no support-force variabl
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import xarray as xr
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
 from railvib.grid import trapezoid
 from railvib.pads.scaled import ScaledPad
 from railvib.track.slab import SlabTrack
 
-__all__ = ["gives_seat_forces", "seat_positions", "support_force_variables"]
+__all__ = [
+    "gives_seat_forces",
+    "seat_positions",
+    "support_force_data",
+    "support_force_variables",
+]
 
 
 def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDArray[np.float64]:
@@ -99,16 +106,49 @@ def support_force_variables(
         (``pad``, then ``ballast``, ``subgrade`` or ``bearing`` where the track has them) and
         ``support_position`` (``wheel``, m); empty for a track without seat forces.
     """
+    data, coords = support_force_data(system, ds, rail)
+    return {
+        name: xr.DataArray(var, coords={k: c for k, c in coords.items() if c.dims[0] in var.dims})
+        for name, var in data.items()
+    }
+
+
+def support_force_data(
+    system: CoupledSystem,
+    ds: xr.Dataset | Mapping[str, ArrayLike],
+    rail: NDArray[np.complex128] | None = None,
+) -> tuple[dict[str, xr.Variable], dict[str, xr.Variable]]:
+    """:func:`support_force_variables` as variables and coordinates, not yet a dataset's.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The system of the result.
+    ds : xarray.Dataset or mapping
+        ``frequency`` (Hz), ``frf_force`` (N/m) and ``irregularity_psd`` (m^2/Hz), as
+        in :func:`support_force_variables` or as arrays by name.
+    rail : numpy.ndarray, optional
+        The rail displacement at the seats per metre of irregularity, m/m, as in
+        :func:`support_force_variables`.
+
+    Returns
+    -------
+    data : dict of xarray.Variable
+        ``psd_support_force`` and ``support_force_rms`` (empty for a track without seat
+        forces).
+    coords : dict of xarray.Variable
+        ``layer`` and ``support_position``.
+    """
     track = system.track
-    f = ds["frequency"].values
-    s_r = ds["irregularity_psd"].values
+    f = np.asarray(ds["frequency"])
+    s_r = np.asarray(ds["irregularity_psd"])
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
-        contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
+        contact = np.asarray(ds["frf_force"], dtype=np.complex128)  # (frequency, wheel)
         try:
             support = track.seat_forces(f, system.wheel_positions, contact)
         except NotImplementedError:  # a continuous foundation: no discrete supports
-            return {}
+            return {}, {}
         slab_layers = list(support.force)
         psd = np.stack(
             [np.abs(support.force[name] / per_rail) ** 2 * s_r[:, None] for name in slab_layers],
@@ -117,14 +157,14 @@ def support_force_variables(
         return _variables(f, support.x, slab_layers, psd)
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
     if not gives_seat_forces(system, f):  # a track without seats modelled one by one
-        return {}
+        return {}, {}
     names: list[str] = []
     psd = np.empty((f.size, seats.size, 0))
     # block by block, so the temporaries are a block's whatever the grid
     for start in range(0, f.size, FREQUENCY_BLOCK):
         sl = slice(start, start + FREQUENCY_BLOCK)
         if rail is None:
-            contact = np.asarray(ds["frf_force"].values[sl], dtype=np.complex128)
+            contact = np.asarray(ds["frf_force"], dtype=np.complex128)[sl]
             receptance = track.receptance(f[sl], system.wheel_positions, seats)  # (f, seat, w)
             rail_block = np.einsum("fsw,fw->fs", receptance, contact)
         else:
@@ -138,30 +178,35 @@ def support_force_variables(
     return _variables(f, seats, names, psd)
 
 
+#: the long name of the ``layer`` coordinate
+LAYER_LONG_NAME = "layer of the rail seat, top down"
+
+
 def _variables(
     f: NDArray[np.float64], seats: NDArray[np.float64], names: list[str], psd: NDArray[np.float64]
-) -> dict[str, xr.DataArray]:
+) -> tuple[dict[str, xr.Variable], dict[str, xr.Variable]]:
     """The support-force variables of `psd` (N^2/Hz, ``(frequency, wheel, layer)``)."""
     coords = {
-        "layer": ("layer", names, {"long_name": "layer of the rail seat, top down"}),
-        "support_position": (
+        "layer": xr.IndexVariable(
+            "layer", names, {"long_name": "layer of the rail seat, top down"}
+        ),
+        "support_position": xr.Variable(
             "wheel",
             seats,
             {"units": "m", "long_name": "rail seat under each wheel (the nearest one)"},
         ),
     }
     where = "through the rail seat nearest each wheel, per seat of one rail"
-    return {
-        "psd_support_force": xr.DataArray(
+    data = {
+        "psd_support_force": xr.Variable(
+            ("frequency", "wheel", "layer"),
             psd,
-            dims=("frequency", "wheel", "layer"),
-            coords=coords,
-            attrs={"units": "N^2/Hz", "long_name": f"PSD of the force in each layer {where}"},
+            {"units": "N^2/Hz", "long_name": f"PSD of the force in each layer {where}"},
         ),
-        "support_force_rms": xr.DataArray(
+        "support_force_rms": xr.Variable(
+            ("wheel", "layer"),
             np.sqrt(trapezoid(psd, f, axis=0)),
-            dims=("wheel", "layer"),
-            coords=coords,
-            attrs={"units": "N", "long_name": f"RMS of the force in each layer {where}"},
+            {"units": "N", "long_name": f"RMS of the force in each layer {where}"},
         ),
     }
+    return data, coords
