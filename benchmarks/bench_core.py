@@ -66,14 +66,14 @@ FINITE_LADDER = [(m, e, a) for m in (30, 60, 100) for e in (4, 6, 8, 12) for a i
 EQUAL_ACCURACY = 1e-4
 
 MILLION = """
-import json, resource, sys, time
+import json, os, resource, sys, tempfile, time
 def peak_rss():  # this process's own high-water mark: ru_maxrss keeps the parent's after exec
     try:
         with open("/proc/self/status") as status:
             return next(int(l.split()[1]) * 1024 for l in status if l.startswith("VmHWM:"))
     except (OSError, StopIteration):
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
-import railvib
+import railvib, railvib.solve
 from railvib.case import build_spectrum
 from railvib.track import compiled
 if sys.argv[2] == "compiled":
@@ -82,14 +82,23 @@ case = railvib.load_preset_case(); system = railvib.build_system(case)
 spectrum = build_spectrum(case)
 grid = railvib.FrequencyGrid.linear(0.5, 1000.0, 999.5 / (int(sys.argv[1]) - 1))
 railvib.run_system(system, railvib.FrequencyGrid.linear(0.5, 1000.0, 1.0), spectrum)
+folder = tempfile.mkdtemp()
+path = os.path.join(folder, "results.nc")
 before = peak_rss()
 t, cpu = time.perf_counter(), time.process_time()
-ds = railvib.run_system(system, grid, spectrum)
+if sys.argv[3] == "held":
+    ds = railvib.run_system(system, grid, spectrum)
+else:  # streamed to a file: the writes counted
+    ds = railvib.solve.stream_to_netcdf(system, grid, spectrum, path)
 t, cpu = time.perf_counter() - t, time.process_time() - cpu
 rss = peak_rss()
+size = os.path.getsize(path) if os.path.exists(path) else 0
+if size:
+    os.remove(path)
+os.rmdir(folder)
 fast = bool(compiled._KERNEL) and compiled._KERNEL[0] is not None
 print(json.dumps({"n": len(grid), "t": t, "cpu": cpu, "rss": rss, "before": before,
-                  "result": ds.nbytes, "compiled": fast}))
+                  "result": ds.nbytes, "file": size, "compiled": fast}))
 """
 
 

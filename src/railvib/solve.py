@@ -64,6 +64,7 @@ __all__ = [
     "PSD_CSV",
     "RUN_FILES",
     "RunOutput",
+    "STREAM_FREQUENCIES",
     "case_toml",
     "contact_check",
     "railvib_version",
@@ -211,6 +212,7 @@ def stream_to_netcdf(
     band = (float(f[0]), float(f[-1]))
     force_ms, support_ms = RunningIntegral(), RunningIntegral()
     support: dict[str, xr.Variable] = {}
+    criteria_ds = xr.Dataset()
     with netcdf_stream(path, f.size) as stream:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
             for sl, frf in system.frf_blocks(f, block=block, observe=seats):
@@ -230,7 +232,8 @@ def stream_to_netcdf(
                     support_ms.add(fb, support["psd_support_force"].values)
                 if sl.start == 0:  # the layout, with the whole-grid values as placeholders
                     data |= check.variables(force_ms.total, loads, ("wheel",), *band)
-                    stream.first(assemble(data, coords | support_coords, _meta(system, attrs)))
+                    layout = assemble(data, coords | support_coords, _meta(system, attrs))
+                    stream.first(layout)
                 else:
                     stream.block(sl, {"frequency": fb, **{k: v.values for k, v in data.items()}})
         whole = check.variables(force_ms.total, loads, ("wheel",), *band)
@@ -244,14 +247,12 @@ def stream_to_netcdf(
                 derived = derive(written, later, criteria)
                 added = [k for k in derived.variables if k not in written.variables]
                 new = derived[[k for k in added if k in derived.data_vars]].load()
-            stream.append(new.drop_vars([k for k in new.coords if k not in added]))
-    with open_netcdf(path, drop=_FREQUENCY_VARIABLES) as ds:
-        names = [k for k in ds.data_vars if "frequency" not in ds[k].dims]
-        return ds[names].load()
-
-
-#: the variables the file of a run holds over ``frequency`` besides the criteria's
-_FREQUENCY_VARIABLES = (*VARIABLES, "pad_stiffness", "psd_support_force")
+            new = new.drop_vars([k for k in new.coords if k not in added])
+            stream.append(new)
+            criteria_ds = new.drop_dims("frequency", errors="ignore")
+    # the loads, coordinates and attributes of the layout, its placeholders replaced
+    small = layout.drop_dims("frequency").assign(whole)
+    return small.merge(criteria_ds)
 
 
 def _seats(system: CoupledSystem, f: NDArray[np.float64]) -> NDArray[np.float64] | None:
@@ -465,16 +466,22 @@ def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
     if not isinstance(case, Case):
         case = load_case(case, force=force)
     _stationary_only(case)
+    system, grid, spectrum, options = _prepared(case)
+    return run_system(system, grid, spectrum, **options)
+
+
+def _prepared(
+    case: Case,
+) -> tuple[CoupledSystem, FrequencyGrid, SpatialSpectrum, dict[str, Any]]:
+    """The system, grid and spectrum of `case`, and the options of its run (validated)."""
     system, grid = build_system(case), build_grid(case)
     criteria = criteria_settings(case, system, grid.f)  # refuses bad settings before solving
-    return run_system(
-        system,
-        grid,
-        build_spectrum(case),
-        attrs={"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
-        loss_of_contact_threshold=case.output.loss_of_contact_threshold,
-        criteria=criteria,
-    )
+    options = {
+        "attrs": {"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
+        "loss_of_contact_threshold": case.output.loss_of_contact_threshold,
+        "criteria": criteria,
+    }
+    return system, grid, build_spectrum(case), options
 
 
 @dataclass(frozen=True, eq=False)
@@ -528,6 +535,11 @@ CRITERIA_FILES = ("criteria.csv", "third_octave.csv")
 #: the criteria figures ``railvib run`` draws (:mod:`railvib.plot.criteria`)
 CRITERIA_STEMS = ("third_octave", "comfort")
 
+#: grids of more frequencies than this are written to ``results.nc`` block by block by
+#: :func:`run_to_folder` (:func:`stream_to_netcdf`): holding such a result would take
+#: more than 60 MB (608 bytes a frequency)
+STREAM_FREQUENCIES = 100_000
+
 #: every file ``railvib run`` may write to its folder (a later run replaces them all)
 RUN_FILES = (
     "results.nc",
@@ -556,6 +568,13 @@ def run_to_folder(
     :data:`RUN_FILES` are replaced or removed (other files are kept), and a run that
     fails or is stopped leaves `outdir` as it was.
 
+    A grid of more than :data:`STREAM_FREQUENCIES` frequencies is written to
+    ``results.nc`` block by block (:func:`stream_to_netcdf`), so memory is bounded by
+    the block, not by the grid; the tables, summary and figures are then made from the
+    file, one variable at a time, and the returned dataset holds the variables without a
+    frequency dimension (the whole result is in ``results.nc``:
+    :func:`railvib.results.load_netcdf`).
+
     Parameters
     ----------
     case : Case, str or pathlib.Path
@@ -572,6 +591,8 @@ def run_to_folder(
     Returns
     -------
     RunOutput
+        Its ``dataset``: the result (:func:`run`), or for a streamed grid the variables
+        without a frequency dimension (:func:`stream_to_netcdf`).
 
     Raises
     ------
@@ -587,38 +608,55 @@ def run_to_folder(
         case = load_case(case, force=force)
     _stationary_only(case)  # before the folder is touched
     with staged_folder(outdir, RUN_FILES) as stage:
-        ds = run(case)
-        table = summary_table(summary(ds, bands=case.output.rms_bands))
-        header = case_header(case)
-        contact = contact_line(ds)
-        footer = [contact, *criteria_lines(ds)]
-        criteria = criteria_table(ds)
-        per_car = car_table(table, ds)
-        cars = [] if per_car is None else [("Per car and for the train", per_car)]
-        extra = [("Contact check per wheel", contact_table(ds)), *cars, ("Criteria", criteria)]
-        files = [
-            save_netcdf(ds, stage.path / "results.nc"),
-            *(save_csv(ds, stage.path / f"{name}.csv", variable=name) for name in PSD_CSV),
-            write_text(
-                stage.path / "summary.csv",
-                summary_csv(table, header, footer, extra=cars),
-            ),
-            write_text(
-                stage.path / "summary.md",
-                summary_markdown(table, header, footer, title=case.title, extra=extra),
-            ),
-            write_text(stage.path / "criteria.csv", criteria.to_csv(index=False)),
-        ]
-        if "octave_level_acceleration" in ds:
-            octaves = octave_table(ds).to_csv(float_format="%.2f")
-            files.append(write_text(stage.path / "third_octave.csv", octaves))
-        if plots:
-            from railvib.plot.criteria import save_criteria_plots  # matplotlib: when plotting
-            from railvib.plot.psd import save_overview
-
-            files += save_overview(ds, stage.path)
-            files += save_criteria_plots(ds, stage.path)
-    files = stage.finals(files)
-    note = linearity_note(ds)
+        system, grid, spectrum, options = _prepared(case)
+        nc = stage.path / "results.nc"
+        if grid.f.size > STREAM_FREQUENCIES:  # written block by block, then read from the file
+            result = stream_to_netcdf(system, grid, spectrum, nc, **options)
+            ds = open_netcdf(nc, drop=("frf_displacement", "frf_force"))
+        else:
+            ds = result = run_system(system, grid, spectrum, **options)
+            save_netcdf(ds, nc)
+        with ds:
+            files, table, header, footer = _write_run(case, ds, stage.path, plots)
+    files = stage.finals([nc, *files])
+    note = linearity_note(result)
     notes = () if note is None else (note,)
-    return RunOutput(ds, table, tuple(files), notes, tuple(header), contact, tuple(footer[1:]))
+    return RunOutput(
+        result, table, tuple(files), notes, tuple(header), footer[0], tuple(footer[1:])
+    )
+
+
+def _write_run(
+    case: Case, ds: xr.Dataset, folder: Path, plots: bool
+) -> tuple[list[Path], pd.DataFrame, list[str], list[str]]:
+    """The files of :func:`run_to_folder` besides ``results.nc``, its table and summary lines."""
+    table = summary_table(summary(ds, bands=case.output.rms_bands))
+    header = case_header(case)
+    contact = contact_line(ds)
+    footer = [contact, *criteria_lines(ds)]
+    criteria = criteria_table(ds)
+    per_car = car_table(table, ds)
+    cars = [] if per_car is None else [("Per car and for the train", per_car)]
+    extra = [("Contact check per wheel", contact_table(ds)), *cars, ("Criteria", criteria)]
+    files = [
+        *(save_csv(ds, folder / f"{name}.csv", variable=name) for name in PSD_CSV),
+        write_text(
+            folder / "summary.csv",
+            summary_csv(table, header, footer, extra=cars),
+        ),
+        write_text(
+            folder / "summary.md",
+            summary_markdown(table, header, footer, title=case.title, extra=extra),
+        ),
+        write_text(folder / "criteria.csv", criteria.to_csv(index=False)),
+    ]
+    if "octave_level_acceleration" in ds:
+        octaves = octave_table(ds).to_csv(float_format="%.2f")
+        files.append(write_text(folder / "third_octave.csv", octaves))
+    if plots:
+        from railvib.plot.criteria import save_criteria_plots  # matplotlib: when plotting
+        from railvib.plot.psd import save_overview
+
+        files += save_overview(ds, folder)
+        files += save_criteria_plots(ds, folder)
+    return files, table, header, footer

@@ -6,8 +6,8 @@ block's variables into ``results.nc`` as it comes, so memory is bounded by the b
 not by the grid. The file has the layout of :func:`railvib.results.save_netcdf` (complex
 variables over a ``part`` dimension, booleans as int8) and opens with
 :func:`railvib.results.load_netcdf` or plain xarray. The first block is written by
-xarray with ``frequency`` an unlimited dimension; the later blocks are appended through
-h5netcdf, which resizes it; the variables without a frequency dimension (the contact
+xarray with ``frequency`` an unlimited dimension, which h5netcdf then resizes to the
+grid; the later blocks are written into it through h5py; the variables without a frequency dimension (the contact
 check, the RMS values) are written with placeholders and overwritten at the end
 (:meth:`NetCDFStream.finish`). HDF5 writes through a Python file object (h5py's
 ``fileobj`` driver), so a full disk fails as a Python ``OSError``. The file is built
@@ -27,6 +27,7 @@ from io import BufferedRandom
 from pathlib import Path
 
 import h5netcdf
+import h5py
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
@@ -81,8 +82,9 @@ class NetCDFStream:
     def __init__(self, file: BufferedRandom, n_freq: int) -> None:
         self._file = file
         self._n = n_freq
-        self._h5: h5netcdf.File | None = None
+        self._h5: h5py.File | None = None
         self._along: list[str] = []
+        self._datasets: dict[str, h5py.Dataset] = {}
 
     def first(self, ds: xr.Dataset) -> None:
         """Write the first block: `ds` holds every variable of the result, its first frequencies.
@@ -104,8 +106,12 @@ class NetCDFStream:
             self._file, engine="h5netcdf", unlimited_dims=("frequency",), encoding=encoding
         )
         self._along = [str(k) for k in encoding]
-        self._h5 = h5netcdf.File(self._file, "a")
-        self._h5.resize_dimension("frequency", self._n)
+        with h5netcdf.File(self._file, "a") as nc:  # netCDF's own resize of the dimension
+            nc.resize_dimension("frequency", self._n)
+        # the values through h5py (its datasets looked up once): h5netcdf's per-write
+        # checks cost 3 ms a block
+        self._h5 = h5py.File(self._file, "r+")
+        self._datasets = {name: self._h5[name] for name in self._along}
 
     def block(self, sl: slice, values: Mapping[str, NDArray[np.generic]]) -> None:
         """Write a later block: the values of the variables over ``frequency`` at indices `sl`.
@@ -119,8 +125,8 @@ class NetCDFStream:
             them), frequency first, in the units of the result.
         """
         assert self._h5 is not None, "first() before block()"
-        for name in self._along:
-            self._h5.variables[name][sl] = _stored(np.asarray(values[name]))
+        for name, dataset in self._datasets.items():
+            dataset[sl] = _stored(np.asarray(values[name]))
 
     def finish(self, whole: Mapping[str, xr.Variable]) -> None:
         """Overwrite the placeholders with the values over the whole grid, and close HDF5.
@@ -132,7 +138,7 @@ class NetCDFStream:
         """
         assert self._h5 is not None, "first() before finish()"
         for name, var in whole.items():
-            self._h5.variables[name][...] = _stored(np.asarray(var.values))
+            self._h5[name][...] = _stored(np.asarray(var.values))
         self.close()
 
     def open(self) -> xr.Dataset:
@@ -159,6 +165,7 @@ class NetCDFStream:
     def close(self) -> None:
         """Close HDF5's handle of the file (idempotent)."""
         if self._h5 is not None:
+            self._datasets = {}
             self._h5.close()
             self._h5 = None
 
