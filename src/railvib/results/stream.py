@@ -7,10 +7,13 @@ not by the grid. The file has the layout of :func:`railvib.results.save_netcdf` 
 variables over a ``part`` dimension, booleans as int8) and opens with
 :func:`railvib.results.load_netcdf` or plain xarray. The first block is written by
 xarray with ``frequency`` an unlimited dimension, which h5netcdf then resizes to the
-grid; the later blocks are written into it through h5py; the variables without a frequency dimension (the contact
-check, the RMS values) are written with placeholders and overwritten at the end
-(:meth:`NetCDFStream.finish`). HDF5 writes through a Python file object (h5py's
-``fileobj`` driver), so a full disk fails as a Python ``OSError``. The file is built
+grid; the later blocks are written into it through h5py; the variables without a
+frequency dimension (the contact check, the RMS values) are written with placeholders
+and overwritten at the end (:meth:`NetCDFStream.finish`). HDF5 writes through a Python file object (h5py's
+``fileobj`` driver) that keeps the first failed write's error and drops every write
+after it (:class:`GuardedFile`): HDF5 left with a failed write crashes the interpreter
+when it later closes the file (h5py 3.16), so it never sees one; the run stops after
+that block with the error, and the file is discarded. The file is built
 under a temporary name and renamed at the end (:func:`railvib.io.atomic_path`): a run
 that fails or is stopped leaves no half-written file.
 
@@ -23,7 +26,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
-from io import BufferedRandom
+from io import FileIO
 from pathlib import Path
 
 import h5netcdf
@@ -68,18 +71,94 @@ class RunningIntegral:
         return self._total
 
 
+class GuardedFile:
+    """An unbuffered file for HDF5 that remembers its first failed write and drops the rest.
+
+    Parameters
+    ----------
+    file : io.FileIO
+        The open file (``w+b``, unbuffered: a write fails when it is made).
+    """
+
+    def __init__(self, file: FileIO) -> None:
+        self._file = file
+        #: the first write's error (a full disk, a file-size limit), or None
+        self.error: OSError | None = None
+
+    def write(self, data: bytes) -> int:
+        """Write `data` (bytes); after a failed write, drop it (the file is discarded)."""
+        n = memoryview(data).nbytes
+        if self.error is None:
+            try:
+                self._file.write(data)
+            except OSError as exc:
+                self.error = exc
+        return n
+
+    def truncate(self, size: int | None = None) -> int:
+        """Resize the file to `size` bytes (dropped after a failed write)."""
+        if self.error is None:
+            try:
+                return self._file.truncate(size)
+            except OSError as exc:
+                self.error = exc
+        return 0 if size is None else size
+
+    def read(self, size: int = -1) -> bytes:
+        """Read up to `size` bytes."""
+        return self._file.read(size)
+
+    def readinto(self, buffer: bytearray) -> int | None:
+        """Read into `buffer`; the number of bytes read."""
+        return self._file.readinto(buffer)
+
+    def seek(self, offset: int, whence: int = 0) -> int:
+        """Move to byte `offset` (from `whence`)."""
+        return self._file.seek(offset, whence)
+
+    def tell(self) -> int:
+        """The position, bytes."""
+        return self._file.tell()
+
+    def flush(self) -> None:
+        """Nothing to flush: the file is unbuffered."""
+
+    def readable(self) -> bool:
+        """True."""
+        return True
+
+    def writable(self) -> bool:
+        """True."""
+        return True
+
+    def seekable(self) -> bool:
+        """True."""
+        return True
+
+    def check(self) -> None:
+        """Raise the first failed write's error, if any.
+
+        Raises
+        ------
+        OSError
+            The error of the first write that failed.
+        """
+        if self.error is not None:
+            raise self.error
+
+
 class NetCDFStream:
     """A netCDF file of one run written block by block (see the module's description).
 
     Parameters
     ----------
-    file : file object
-        The open, readable and writable (``w+b``) file.
+    file : GuardedFile
+        The open file.
     n_freq : int
         Frequencies of the whole grid.
     """
 
-    def __init__(self, file: BufferedRandom, n_freq: int) -> None:
+    def __init__(self, file: GuardedFile, n_freq: int) -> None:
         self._file = file
         self._n = n_freq
         self._h5: h5py.File | None = None
@@ -102,7 +181,7 @@ class NetCDFStream:
             for name, var in out.variables.items()
             if var.dims[:1] == ("frequency",)
         }
-        out.to_netcdf(
+        out.to_netcdf(  # type: ignore[call-overload]
             self._file, engine="h5netcdf", unlimited_dims=("frequency",), encoding=encoding
         )
         self._along = [str(k) for k in encoding]
@@ -112,6 +191,7 @@ class NetCDFStream:
         # checks cost 3 ms a block
         self._h5 = h5py.File(self._file, "r+")
         self._datasets = {name: self._h5[name] for name in self._along}
+        self._file.check()
 
     def block(self, sl: slice, values: Mapping[str, NDArray[np.generic]]) -> None:
         """Write a later block: the values of the variables over ``frequency`` at indices `sl`.
@@ -127,6 +207,7 @@ class NetCDFStream:
         assert self._h5 is not None, "first() before block()"
         for name, dataset in self._datasets.items():
             dataset[sl] = _stored(np.asarray(values[name]))
+        self._file.check()
 
     def finish(self, whole: Mapping[str, xr.Variable]) -> None:
         """Overwrite the placeholders with the values over the whole grid, and close HDF5.
@@ -140,6 +221,7 @@ class NetCDFStream:
         for name, var in whole.items():
             self._h5[name][...] = _stored(np.asarray(var.values))
         self.close()
+        self._file.check()
 
     def open(self) -> xr.Dataset:
         """The file written so far, opened lazily (each variable read when used; after finish).
@@ -150,7 +232,7 @@ class NetCDFStream:
             As :func:`railvib.results.dataset.open_netcdf` opens it (complex and boolean
             variables restored, and so loaded); close it before :meth:`append`.
         """
-        return _decoded(xr.open_dataset(self._file, engine="h5netcdf"))
+        return _decoded(xr.open_dataset(self._file, engine="h5netcdf"))  # type: ignore[arg-type]
 
     def append(self, ds: xr.Dataset) -> None:
         """Add the variables of `ds` (new names; their new coordinates with them) to the file.
@@ -160,7 +242,8 @@ class NetCDFStream:
         ds : xarray.Dataset
             Variables over the file's dimensions or new ones (after :meth:`finish`).
         """
-        _encode(ds).to_netcdf(self._file, mode="a", engine="h5netcdf")
+        _encode(ds).to_netcdf(self._file, mode="a", engine="h5netcdf")  # type: ignore[call-overload]
+        self._file.check()
 
     def close(self) -> None:
         """Close HDF5's handle of the file (idempotent)."""
@@ -202,9 +285,11 @@ def netcdf_stream(path: str | Path, n_freq: int) -> Iterator[NetCDFStream]:
         The file cannot be written (full disk, read-only folder); an existing `path` is
         left as it was and no temporary remains.
     """
-    with atomic_path(path) as tmp, tmp.open("w+b") as file:
+    with atomic_path(path) as tmp, FileIO(tmp, "w+") as raw:
+        file = GuardedFile(raw)
         stream = NetCDFStream(file, n_freq)
         try:
             yield stream
         finally:
             stream.close()
+            file.check()  # a failed write's error, before any error that it caused
