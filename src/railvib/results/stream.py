@@ -9,11 +9,12 @@ variables over a ``part`` dimension, booleans as int8) and opens with
 xarray with ``frequency`` an unlimited dimension, which h5netcdf then resizes to the
 grid; the later blocks are written into it through h5py; the variables without a
 frequency dimension (the contact check, the RMS values) are written with placeholders
-and overwritten at the end (:meth:`NetCDFStream.finish`). HDF5 writes through a Python file object (h5py's
-``fileobj`` driver) that keeps the first failed write's error and drops every write
-after it (:class:`GuardedFile`): HDF5 left with a failed write crashes the interpreter
-when it later closes the file (h5py 3.16), so it never sees one; the run stops after
-that block with the error, and the file is discarded. The file is built
+and overwritten at the end (:meth:`NetCDFStream.finish`). HDF5 writes through a Python
+file object (h5py's ``fileobj`` driver) that keeps the first failed write's error and
+drops every write after it (:class:`GuardedFile`): HDF5 left with a failed write
+crashes the interpreter when it later closes the file (h5py 3.16), so it never sees
+one; the run stops with the error before the file is opened again, and the file is
+discarded. The file is built
 under a temporary name and renamed at the end (:func:`railvib.io.atomic_path`): a run
 that fails or is stopped leaves no half-written file.
 
@@ -24,6 +25,8 @@ equals the whole grid's :func:`railvib.grid.trapezoid` to rounding.
 
 from __future__ import annotations
 
+import gc
+import os
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from io import FileIO
@@ -71,6 +74,11 @@ class RunningIntegral:
         return self._total
 
 
+#: bytes per frequency reserved beyond the first block's, for the criteria's variables
+#: over frequency added at the end (the floor accelerations: 8 bytes per floor point)
+RESERVE_EXTRA = 128
+
+
 class GuardedFile:
     """An unbuffered file for HDF5 that remembers its first failed write and drops the rest.
 
@@ -88,16 +96,16 @@ class GuardedFile:
     def write(self, data: bytes) -> int:
         """Write `data` (bytes); after a failed write, drop it (the file is discarded)."""
         n = memoryview(data).nbytes
-        if self.error is None:
+        if self.error is None and not self._file.closed:
             try:
                 self._file.write(data)
             except OSError as exc:
                 self.error = exc
-        return n
+        return n  # also once closed: a handle HDF5 closes late (at exit) writes nothing
 
     def truncate(self, size: int | None = None) -> int:
         """Resize the file to `size` bytes (dropped after a failed write)."""
-        if self.error is None:
+        if self.error is None and not self._file.closed:
             try:
                 return self._file.truncate(size)
             except OSError as exc:
@@ -105,20 +113,20 @@ class GuardedFile:
         return 0 if size is None else size
 
     def read(self, size: int = -1) -> bytes:
-        """Read up to `size` bytes."""
-        return self._file.read(size)
+        """Read up to `size` bytes (none once closed)."""
+        return b"" if self._file.closed else self._file.read(size)
 
     def readinto(self, buffer: bytearray) -> int | None:
-        """Read into `buffer`; the number of bytes read."""
-        return self._file.readinto(buffer)
+        """Read into `buffer`; the number of bytes read (none once closed)."""
+        return 0 if self._file.closed else self._file.readinto(buffer)
 
     def seek(self, offset: int, whence: int = 0) -> int:
         """Move to byte `offset` (from `whence`)."""
-        return self._file.seek(offset, whence)
+        return offset if self._file.closed else self._file.seek(offset, whence)
 
     def tell(self) -> int:
         """The position, bytes."""
-        return self._file.tell()
+        return 0 if self._file.closed else self._file.tell()
 
     def flush(self) -> None:
         """Nothing to flush: the file is unbuffered."""
@@ -134,6 +142,25 @@ class GuardedFile:
     def seekable(self) -> bool:
         """True."""
         return True
+
+    def reserve(self, size: int) -> None:
+        """Set aside `size` bytes of disk for the file before HDF5 writes them.
+
+        A full disk or a file-size limit then fails here, before HDF5 has written into
+        the space (``posix_fallocate``; where the system has none, the writes are
+        guarded only). The file's end is HDF5's at its close.
+
+        Parameters
+        ----------
+        size : int
+            Bytes the file will take at most (the space beyond its end is released
+            when HDF5 closes it).
+        """
+        if self.error is None and hasattr(os, "posix_fallocate"):
+            try:
+                os.posix_fallocate(self._file.fileno(), 0, size)
+            except OSError as exc:
+                self.error = exc
 
     def check(self) -> None:
         """Raise the first failed write's error, if any.
@@ -185,8 +212,12 @@ class NetCDFStream:
             self._file, engine="h5netcdf", unlimited_dims=("frequency",), encoding=encoding
         )
         self._along = [str(k) for k in encoding]
+        self._file.check()  # before HDF5 reads the file back
+        per_frequency = sum(out[k].nbytes for k in self._along) / n_block
+        self._file.reserve(int(per_frequency * self._n + RESERVE_EXTRA * self._n) + 2**20)
         with h5netcdf.File(self._file, "a") as nc:  # netCDF's own resize of the dimension
             nc.resize_dimension("frequency", self._n)
+        self._file.check()
         # the values through h5py (its datasets looked up once): h5netcdf's per-write
         # checks cost 3 ms a block
         self._h5 = h5py.File(self._file, "r+")
@@ -232,6 +263,7 @@ class NetCDFStream:
             As :func:`railvib.results.dataset.open_netcdf` opens it (complex and boolean
             variables restored, and so loaded); close it before :meth:`append`.
         """
+        self._file.check()
         return _decoded(xr.open_dataset(self._file, engine="h5netcdf"))  # type: ignore[arg-type]
 
     def append(self, ds: xr.Dataset) -> None:
@@ -292,4 +324,5 @@ def netcdf_stream(path: str | Path, n_freq: int) -> Iterator[NetCDFStream]:
             yield stream
         finally:
             stream.close()
+            gc.collect()  # HDF5 objects left in reference cycles closed while the file is
             file.check()  # a failed write's error, before any error that it caused
