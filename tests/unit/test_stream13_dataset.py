@@ -78,7 +78,8 @@ def old_way(system, grid, spectrum, threshold):
     ds = with_unit_coordinates(ds, {n: n for n in VARIABLES if n in QUANTITY_UNITS})
     rail = None if seats is None else frf.rail_observed
     ds = ds.assign(support_force_variables(system, ds, rail=rail))
-    return derive(ds, ["contact_check"], {"contact_check": {"loss_of_contact_threshold": threshold}})
+    settings = {"contact_check": {"loss_of_contact_threshold": threshold}}
+    return derive(ds, ["contact_check"], settings)
 
 
 @pytest.mark.parametrize("name", PRESETS)

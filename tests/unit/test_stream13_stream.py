@@ -34,7 +34,9 @@ def _assert_equal_to_held(held, streamed, p0):
         np.testing.assert_array_equal(streamed.attrs[key], value)
     for name, var in held.variables.items():
         got = streamed[name]
-        assert got.dims == var.dims and got.dtype == var.dtype and got.attrs == var.attrs, name
+        assert got.dims == var.dims, name
+        assert got.dtype == var.dtype, name
+        assert got.attrs == var.attrs, name
         if name in INTEGRALS:
             np.testing.assert_allclose(got.values, var.values, rtol=1e-12, atol=0)
         elif name == "loss_of_contact_probability":
@@ -114,7 +116,8 @@ def test_run_to_folder_streams_a_large_grid_with_the_same_files(tmp_path, monkey
     names = sorted(p.name for p in (tmp_path / "held").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "streamed").iterdir())
     for name in ["psd_acceleration.csv", "psd_displacement.csv", "psd_force.csv", "summary.md"]:
-        assert (tmp_path / "held" / name).read_bytes() == (tmp_path / "streamed" / name).read_bytes()
+        held_bytes = (tmp_path / "held" / name).read_bytes()
+        assert held_bytes == (tmp_path / "streamed" / name).read_bytes(), name
     assert streamed.contact == held.contact  # printed to 3 figures: rounding does not show
     assert "frequency" not in streamed.dataset.dims
     assert streamed.linear_model_valid == held.linear_model_valid
