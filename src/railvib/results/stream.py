@@ -25,7 +25,6 @@ equals the whole grid's :func:`railvib.grid.trapezoid` to rounding.
 
 from __future__ import annotations
 
-import gc
 import os
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
@@ -324,5 +323,4 @@ def netcdf_stream(path: str | Path, n_freq: int) -> Iterator[NetCDFStream]:
             yield stream
         finally:
             stream.close()
-            gc.collect()  # HDF5 objects left in reference cycles closed while the file is
             file.check()  # a failed write's error, before any error that it caused
