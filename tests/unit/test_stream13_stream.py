@@ -143,3 +143,15 @@ def test_the_streamed_run_memory_is_bounded_by_the_block_not_the_grid(tmp_path):
         peaks.append(tracemalloc.get_traced_memory()[1])
         tracemalloc.stop()
     assert peaks[1] - peaks[0] < 1e6, peaks
+
+
+@pytest.mark.slow  # a streamed run of 2000 frequencies: ~1-2 s
+def test_the_streaming_example_of_the_outputs_page_runs(tmp_path, monkeypatch):
+    import re
+    from pathlib import Path
+
+    monkeypatch.chdir(tmp_path)
+    page = Path(__file__).resolve().parents[2] / "docs" / "outputs.md"
+    [block] = re.findall(r"```python\n(.*?)```", page.read_text(), flags=re.S)
+    exec(compile(block, str(page), "exec"), {})  # noqa: S102
+    assert load_netcdf(tmp_path / "big.nc").sizes["frequency"] == 2000
