@@ -36,7 +36,12 @@ from railvib.outputs import (
     octave_table,
     third_octave_bands,
 )
-from railvib.outputs.supports import gives_seat_forces, seat_positions, support_force_data
+from railvib.outputs.supports import (
+    SUPPORT_COORDS,
+    gives_seat_forces,
+    seat_positions,
+    support_force_data,
+)
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
 from railvib.plot import OVERVIEW_STEMS
 from railvib.response import FRF
@@ -137,9 +142,10 @@ def run_system(
     data |= _extra(loads, pad_k)
     check_finite_variables(data, f)  # before the derived outputs, which assume finite PSDs
     # a slab track gives its bearing forces from the contact forces (its seats share the slab)
-    support, support_coords = support_force_data(
+    support = support_force_data(
         system, {"frequency": f, **values}, rail=None if seats is None else seat_rail
     )
+    support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
     data |= support
     mean_square = trapezoid(values["psd_force"], f, axis=0)
     data |= check.variables(mean_square, loads, ("wheel",), float(f[0]), float(f[-1]))
@@ -223,9 +229,8 @@ def stream_to_netcdf(
                 data |= _extra(loads, system.track.pad.stiffness(fb, system.track.pad_temperature))
                 check_finite_variables(data, fb, grid=f)
                 rail = None if seats is None else frf.rail_observed
-                support, support_coords = support_force_data(
-                    system, {"frequency": fb, **values}, rail=rail
-                )
+                support = support_force_data(system, {"frequency": fb, **values}, rail=rail)
+                support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
                 data |= support
                 force_ms.add(fb, np.asarray(values["psd_force"], dtype=float))
                 if support:

@@ -106,10 +106,11 @@ def support_force_variables(
         (``pad``, then ``ballast``, ``subgrade`` or ``bearing`` where the track has them) and
         ``support_position`` (``wheel``, m); empty for a track without seat forces.
     """
-    data, coords = support_force_data(system, ds, rail)
+    out = support_force_data(system, ds, rail)
+    coords = {k: out.pop(k) for k in SUPPORT_COORDS if k in out}
     return {
         name: xr.DataArray(var, coords={k: c for k, c in coords.items() if c.dims[0] in var.dims})
-        for name, var in data.items()
+        for name, var in out.items()
     }
 
 
@@ -117,8 +118,8 @@ def support_force_data(
     system: CoupledSystem,
     ds: xr.Dataset | Mapping[str, ArrayLike],
     rail: NDArray[np.complex128] | None = None,
-) -> tuple[dict[str, xr.Variable], dict[str, xr.Variable]]:
-    """:func:`support_force_variables` as variables and coordinates, not yet a dataset's.
+) -> dict[str, xr.Variable]:
+    """:func:`support_force_variables` as variables, not yet a dataset's.
 
     Parameters
     ----------
@@ -133,11 +134,10 @@ def support_force_data(
 
     Returns
     -------
-    data : dict of xarray.Variable
-        ``psd_support_force`` and ``support_force_rms`` (empty for a track without seat
-        forces).
-    coords : dict of xarray.Variable
-        ``layer`` and ``support_position``.
+    dict of xarray.Variable
+        ``psd_support_force`` and ``support_force_rms``, and their coordinates
+        (:data:`SUPPORT_COORDS`: ``layer`` and ``support_position``); empty for a track
+        without seat forces.
     """
     track = system.track
     f = np.asarray(ds["frequency"])
@@ -148,7 +148,7 @@ def support_force_data(
         try:
             support = track.seat_forces(f, system.wheel_positions, contact)
         except NotImplementedError:  # a continuous foundation: no discrete supports
-            return {}, {}
+            return {}
         slab_layers = list(support.force)
         psd = np.stack(
             [np.abs(support.force[name] / per_rail) ** 2 * s_r[:, None] for name in slab_layers],
@@ -157,7 +157,7 @@ def support_force_data(
         return _variables(f, support.x, slab_layers, psd)
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
     if not gives_seat_forces(system, f):  # a track without seats modelled one by one
-        return {}, {}
+        return {}
     names: list[str] = []
     psd = np.empty((f.size, seats.size, 0))
     # block by block, so the temporaries are a block's whatever the grid
@@ -178,13 +178,16 @@ def support_force_data(
     return _variables(f, seats, names, psd)
 
 
+#: the coordinates among :func:`support_force_data`'s variables
+SUPPORT_COORDS = ("layer", "support_position")
+
 #: the long name of the ``layer`` coordinate
 LAYER_LONG_NAME = "layer of the rail seat, top down"
 
 
 def _variables(
     f: NDArray[np.float64], seats: NDArray[np.float64], names: list[str], psd: NDArray[np.float64]
-) -> tuple[dict[str, xr.Variable], dict[str, xr.Variable]]:
+) -> dict[str, xr.Variable]:
     """The support-force variables of `psd` (N^2/Hz, ``(frequency, wheel, layer)``)."""
     coords = {
         "layer": xr.IndexVariable(
@@ -209,4 +212,4 @@ def _variables(
             {"units": "N", "long_name": f"RMS of the force in each layer {where}"},
         ),
     }
-    return data, coords
+    return data | coords
