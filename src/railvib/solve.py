@@ -142,9 +142,8 @@ def run_system(
     data |= _extra(loads, pad_k)
     check_finite_variables(data, f)  # before the derived outputs, which assume finite PSDs
     # a slab track gives its bearing forces from the contact forces (its seats share the slab)
-    support = support_force_data(
-        system, {"frequency": f, **values}, rail=None if seats is None else seat_rail
-    )
+    rail = None if seats is None else seat_rail
+    support = support_force_data(system, {"frequency": coords["frequency"], **data}, rail=rail)
     support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
     data |= support
     mean_square = trapezoid(values["psd_force"], f, axis=0)
@@ -229,7 +228,9 @@ def stream_to_netcdf(
                 data |= _extra(loads, system.track.pad.stiffness(fb, system.track.pad_temperature))
                 check_finite_variables(data, fb, grid=f)
                 rail = None if seats is None else frf.rail_observed
-                support = support_force_data(system, {"frequency": fb, **values}, rail=rail)
+                support = support_force_data(
+                    system, {"frequency": coords["frequency"], **data}, rail=rail
+                )
                 support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
                 data |= support
                 force_ms.add(fb, np.asarray(values["psd_force"], dtype=float))

@@ -21,7 +21,7 @@ from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from railvib.coupling import FREQUENCY_BLOCK, CoupledSystem
 from railvib.grid import trapezoid
@@ -116,7 +116,7 @@ def support_force_variables(
 
 def support_force_data(
     system: CoupledSystem,
-    ds: xr.Dataset | Mapping[str, ArrayLike],
+    ds: xr.Dataset | Mapping[str, xr.Variable],
     rail: NDArray[np.complex128] | None = None,
 ) -> dict[str, xr.Variable]:
     """:func:`support_force_variables` as variables, not yet a dataset's.
@@ -127,7 +127,7 @@ def support_force_data(
         The system of the result.
     ds : xarray.Dataset or mapping
         ``frequency`` (Hz), ``frf_force`` (N/m) and ``irregularity_psd`` (m^2/Hz), as
-        in :func:`support_force_variables` or as arrays by name.
+        in :func:`support_force_variables` or as variables by name.
     rail : numpy.ndarray, optional
         The rail displacement at the seats per metre of irregularity, m/m, as in
         :func:`support_force_variables`.
@@ -140,11 +140,11 @@ def support_force_data(
         without seat forces.
     """
     track = system.track
-    f = np.asarray(ds["frequency"])
-    s_r = np.asarray(ds["irregularity_psd"])
+    f = ds["frequency"].values
+    s_r = ds["irregularity_psd"].values
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
-        contact = np.asarray(ds["frf_force"], dtype=np.complex128)  # (frequency, wheel)
+        contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
         try:
             support = track.seat_forces(f, system.wheel_positions, contact)
         except NotImplementedError:  # a continuous foundation: no discrete supports
@@ -164,7 +164,7 @@ def support_force_data(
     for start in range(0, f.size, FREQUENCY_BLOCK):
         sl = slice(start, start + FREQUENCY_BLOCK)
         if rail is None:
-            contact = np.asarray(ds["frf_force"], dtype=np.complex128)[sl]
+            contact = np.asarray(ds["frf_force"].values[sl], dtype=np.complex128)
             receptance = track.receptance(f[sl], system.wheel_positions, seats)  # (f, seat, w)
             rail_block = np.einsum("fsw,fw->fs", receptance, contact)
         else:
