@@ -632,6 +632,10 @@ def run_to_folder(
     )
 
 
+#: the per-frequency variables the figures draw line by line
+_PLOTTED = ("psd_acceleration", "psd_force", "psd_floor_acceleration")
+
+
 def _write_run(
     case: Case, ds: xr.Dataset, folder: Path, plots: bool
 ) -> tuple[list[Path], pd.DataFrame, list[str], list[str]]:
@@ -663,6 +667,9 @@ def _write_run(
         from railvib.plot.criteria import save_criteria_plots  # matplotlib: when plotting
         from railvib.plot.psd import save_overview
 
+        for name in _PLOTTED:  # a streamed file's: read once, not once per line drawn
+            if name in ds:
+                ds[name].load()
         files += save_overview(ds, folder)
         files += save_criteria_plots(ds, folder)
     return files, table, header, footer
