@@ -17,7 +17,7 @@ from railvib.case import Case, build_grid, build_spectrum, build_system, case_he
 from railvib.case.schema import CriteriaSection
 from railvib.coupling import CoupledSystem
 from railvib.errors import CaseError, RailvibDeprecationWarning
-from railvib.grid import FrequencyGrid
+from railvib.grid import FrequencyGrid, trapezoid
 from railvib.io import railvib_version, staged_folder, write_text
 from railvib.outputs import (
     DEFAULT_OUTPUTS,
@@ -36,14 +36,29 @@ from railvib.outputs import (
     octave_table,
     third_octave_bands,
 )
-from railvib.outputs.supports import gives_seat_forces, seat_positions, support_force_variables
+from railvib.outputs.supports import (
+    SUPPORT_COORDS,
+    gives_seat_forces,
+    seat_positions,
+    support_force_data,
+)
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
 from railvib.plot import OVERVIEW_STEMS
 from railvib.response import FRF
-from railvib.results.dataset import build_dataset_blocks, check_finite, save_csv, save_netcdf
+from railvib.results.dataset import (
+    assemble,
+    check_finite_variables,
+    open_netcdf,
+    per_frequency_values,
+    result_variables,
+    save_csv,
+    save_netcdf,
+)
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
+from railvib.results.stream import RunningIntegral, netcdf_stream
 from railvib.results.trains import car_table
+from railvib.results.variables import VARIABLES, compute_variables
 from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
@@ -54,12 +69,14 @@ __all__ = [
     "PSD_CSV",
     "RUN_FILES",
     "RunOutput",
+    "STREAM_FREQUENCIES",
     "case_toml",
     "contact_check",
     "railvib_version",
     "run",
     "run_system",
     "run_to_folder",
+    "stream_to_netcdf",
 ]
 
 
@@ -113,19 +130,161 @@ def run_system(
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
         s_r = spectrum.temporal(f, system.speed)
         pad_k = system.track.pad.stiffness(f, system.track.pad_temperature)
-    extra = {
-        "static_contact_load": xr.DataArray(
-            system.vehicle.static_wheel_loads(),
-            dims=("wheel",),
-            attrs={"units": "N", "long_name": "static contact load"},
+    check = ContactCheck(loss_of_contact_threshold=loss_of_contact_threshold)
+    seats = _seats(system, f)
+    seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        blocks = _kept(system.frf_blocks(f, observe=seats), seat_rail)
+        values, labels, n_wheel = per_frequency_values(f, blocks, s_r)
+    # every variable wrapped, not copied, and the dataset built once at the end
+    data, coords = result_variables(f, labels, n_wheel, values)
+    loads = system.vehicle.static_wheel_loads()
+    data |= _extra(loads, pad_k)
+    check_finite_variables(data, f)  # before the derived outputs, which assume finite PSDs
+    # a slab track gives its bearing forces from the contact forces (its seats share the slab)
+    rail = None if seats is None else seat_rail
+    support = support_force_data(system, {"frequency": coords["frequency"], **data}, rail=rail)
+    support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
+    data |= support
+    mean_square = trapezoid(values["psd_force"], f, axis=0)
+    data |= check.variables(mean_square, loads, ("wheel",), float(f[0]), float(f[-1]))
+    ds = assemble(data, coords | support_coords, _meta(system, attrs))
+    # the contact check from the arrays above; any other default output and the criteria
+    later = [name for name in DEFAULT_OUTPUTS if name != "contact_check"] + list(criteria or {})
+    return derive(ds, later, criteria) if later else ds
+
+
+def stream_to_netcdf(
+    system: CoupledSystem,
+    grid: FrequencyGrid,
+    spectrum: SpatialSpectrum,
+    path: str | Path,
+    attrs: dict[str, str] | None = None,
+    *,
+    loss_of_contact_threshold: float = LOSS_OF_CONTACT_NOTE,
+    criteria: dict[str, dict[str, Any]] | None = None,
+    block: int | None = None,
+) -> xr.Dataset:
+    """:func:`run_system` written to a netCDF file block by block, for grids too large to hold.
+
+    Each block of frequencies is solved, its variables written to `path` and dropped
+    (:class:`railvib.results.stream.NetCDFStream`), so memory is bounded by the block,
+    not by the grid; the contact check and the support-force RMS are integrated block by
+    block (:class:`railvib.results.stream.RunningIntegral`). The criteria, which need
+    whole spectra, are computed from the written file one variable at a time and added
+    to it. The file is written under a temporary name and renamed at the end: a run that
+    fails or is stopped leaves no half-written file, and an earlier `path` as it was.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        Vehicle, track, contact, wheel positions and speed.
+    grid : FrequencyGrid
+        Frequencies (Hz).
+    spectrum : SpatialSpectrum
+        Irregularity spectrum (spatial, one-sided).
+    path : str or pathlib.Path
+        The netCDF file (``results.nc``).
+    attrs : dict, optional
+        Extra global attributes.
+    loss_of_contact_threshold : float
+        Largest probability of loss of contact (dimensionless), as in :func:`run_system`.
+    criteria : dict, optional
+        Derived outputs to add after the contact check, as in :func:`run_system`.
+    block : int, optional
+        Frequencies per block (default: :meth:`railvib.coupling.CoupledSystem.frf_blocks`'s).
+
+    Returns
+    -------
+    xarray.Dataset
+        The variables without a frequency dimension (static loads, the contact check,
+        the support-force RMS, the criteria's), in memory. The file holds the result of
+        :func:`run_system`: :func:`railvib.results.load_netcdf` of it equals
+        :func:`railvib.results.save_netcdf`'s of the result held in memory (the RMS values
+        to rounding: integrated block by block).
+
+    Raises
+    ------
+    railvib.errors.NonFiniteResult
+        A response is NaN or infinite (nothing is left at `path`).
+    railvib.errors.OutputError
+        `path` cannot be written (full disk, read-only folder).
+    """
+    f = grid.f
+    check = ContactCheck(loss_of_contact_threshold=loss_of_contact_threshold)
+    seats = _seats(system, f)
+    loads = system.vehicle.static_wheel_loads()
+    band = (float(f[0]), float(f[-1]))
+    force_ms, support_ms = RunningIntegral(), RunningIntegral()
+    support: dict[str, xr.Variable] = {}
+    criteria_ds = xr.Dataset()
+    with netcdf_stream(path, f.size) as stream:
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
+            for sl, frf in system.frf_blocks(f, block=block, observe=seats):
+                fb = f[sl]
+                s_r = spectrum.temporal(fb, system.speed)
+                values = compute_variables(frf, s_r, VARIABLES)
+                data, coords = result_variables(fb, frf.labels, frf.n_wheel, values)
+                data |= _extra(loads, system.track.pad.stiffness(fb, system.track.pad_temperature))
+                check_finite_variables(data, fb, grid=f)
+                rail = None if seats is None else frf.rail_observed
+                support = support_force_data(
+                    system, {"frequency": coords["frequency"], **data}, rail=rail
+                )
+                support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
+                data |= support
+                force_ms.add(fb, np.asarray(values["psd_force"], dtype=float))
+                if support:
+                    support_ms.add(fb, support["psd_support_force"].values)
+                if sl.start == 0:  # the layout, with the whole-grid values as placeholders
+                    data |= check.variables(force_ms.total, loads, ("wheel",), *band)
+                    layout = assemble(data, coords | support_coords, _meta(system, attrs))
+                    stream.first(layout)
+                else:
+                    stream.block(sl, {"frequency": fb, **{k: v.values for k, v in data.items()}})
+        whole = check.variables(force_ms.total, loads, ("wheel",), *band)
+        if support:
+            rms = support["support_force_rms"]
+            whole["support_force_rms"] = rms.copy(data=np.sqrt(support_ms.total))
+        stream.finish(whole)
+        later = [name for name in DEFAULT_OUTPUTS if name != "contact_check"] + list(criteria or {})
+        if later:
+            with stream.open() as written:  # the criteria read the complex FRFs too
+                derived = derive(written, later, criteria)
+                added = [k for k in derived.variables if k not in written.variables]
+                new = derived[[k for k in added if k in derived.data_vars]].load()
+            new = new.drop_vars([k for k in new.coords if k not in added])
+            stream.append(new)
+            criteria_ds = new.drop_dims("frequency", errors="ignore")
+    # the loads, coordinates and attributes of the layout, its placeholders replaced
+    small = layout.drop_dims("frequency").assign(whole)
+    return small.merge(criteria_ds)
+
+
+def _seats(system: CoupledSystem, f: NDArray[np.float64]) -> NDArray[np.float64] | None:
+    """The rail seats under the wheels, m, where the track gives their forces (else None)."""
+    if gives_seat_forces(system, f):
+        return seat_positions(system.wheel_positions, system.track.sleeper_spacing)
+    return None
+
+
+def _extra(loads: NDArray[np.float64], pad_k: NDArray[np.complex128]) -> dict[str, xr.Variable]:
+    """The static contact loads (N) and the pad stiffness over the grid (N/m) of a run."""
+    return {
+        "static_contact_load": xr.Variable(
+            ("wheel",), loads, {"units": "N", "long_name": "static contact load"}
         ),
-        "pad_stiffness": xr.DataArray(
+        "pad_stiffness": xr.Variable(
+            ("frequency",),
             pad_k,
-            dims=("frequency",),
-            attrs={"units": "N/m", "long_name": "railpad dynamic stiffness K' + iK'' (beam model)"},
+            {"units": "N/m", "long_name": "railpad dynamic stiffness K' + iK'' (beam model)"},
         ),
     }
-    meta = {
+
+
+def _meta(system: CoupledSystem, attrs: dict[str, str] | None) -> dict[str, Any]:
+    """The global attributes of a run of `system`, then `attrs`."""
+    return {
         "railvib_version": railvib_version(),
         "speed_m_per_s": system.speed,
         "contact_stiffness_n_per_m": system.contact_stiffness,
@@ -135,20 +294,6 @@ def run_system(
         "sign_convention": "displacements positive downward; irregularity > 0 is a dip",
         **(attrs or {}),
     }
-    settings = {"contact_check": {"loss_of_contact_threshold": loss_of_contact_threshold}}
-    # the rail at the seats under the wheels from the same track solve as the contact's
-    seats = None
-    if gives_seat_forces(system, f):
-        seats = seat_positions(system.wheel_positions, system.track.sleeper_spacing)
-    seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        blocks = _kept(system.frf_blocks(f, observe=seats), seat_rail)
-        ds = build_dataset_blocks(f, blocks, s_r, attrs=meta, extra=extra)
-    check_finite(ds)  # before the derived outputs, which assume finite PSDs
-    # a slab track gives its bearing forces from the contact forces (its seats share the slab)
-    ds = ds.assign(support_force_variables(system, ds, rail=None if seats is None else seat_rail))
-    ds = derive(ds, DEFAULT_OUTPUTS, settings)
-    return derive(ds, list(criteria or {}), criteria) if criteria else ds
 
 
 def _kept(
@@ -327,16 +472,22 @@ def run(case: Case | str | Path, *, force: bool = False) -> xr.Dataset:
     if not isinstance(case, Case):
         case = load_case(case, force=force)
     _stationary_only(case)
+    system, grid, spectrum, options = _prepared(case)
+    return run_system(system, grid, spectrum, **options)
+
+
+def _prepared(
+    case: Case,
+) -> tuple[CoupledSystem, FrequencyGrid, SpatialSpectrum, dict[str, Any]]:
+    """The system, grid and spectrum of `case`, and the options of its run (validated)."""
     system, grid = build_system(case), build_grid(case)
     criteria = criteria_settings(case, system, grid.f)  # refuses bad settings before solving
-    return run_system(
-        system,
-        grid,
-        build_spectrum(case),
-        attrs={"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
-        loss_of_contact_threshold=case.output.loss_of_contact_threshold,
-        criteria=criteria,
-    )
+    options = {
+        "attrs": {"title": case.title, "case_toml": case.to_toml(), "rail_model": case.rail_model},
+        "loss_of_contact_threshold": case.output.loss_of_contact_threshold,
+        "criteria": criteria,
+    }
+    return system, grid, build_spectrum(case), options
 
 
 @dataclass(frozen=True, eq=False)
@@ -390,6 +541,11 @@ CRITERIA_FILES = ("criteria.csv", "third_octave.csv")
 #: the criteria figures ``railvib run`` draws (:mod:`railvib.plot.criteria`)
 CRITERIA_STEMS = ("third_octave", "comfort")
 
+#: grids of more frequencies than this are written to ``results.nc`` block by block by
+#: :func:`run_to_folder` (:func:`stream_to_netcdf`): holding such a result would take
+#: more than 60 MB (608 bytes a frequency)
+STREAM_FREQUENCIES = 100_000
+
 #: every file ``railvib run`` may write to its folder (a later run replaces them all)
 RUN_FILES = (
     "results.nc",
@@ -418,6 +574,13 @@ def run_to_folder(
     :data:`RUN_FILES` are replaced or removed (other files are kept), and a run that
     fails or is stopped leaves `outdir` as it was.
 
+    A grid of more than :data:`STREAM_FREQUENCIES` frequencies is written to
+    ``results.nc`` block by block (:func:`stream_to_netcdf`), so memory is bounded by
+    the block, not by the grid; the tables, summary and figures are then made from the
+    file, one variable at a time, and the returned dataset holds the variables without a
+    frequency dimension (the whole result is in ``results.nc``:
+    :func:`railvib.results.load_netcdf`).
+
     Parameters
     ----------
     case : Case, str or pathlib.Path
@@ -434,6 +597,8 @@ def run_to_folder(
     Returns
     -------
     RunOutput
+        Its ``dataset``: the result (:func:`run`), or for a streamed grid the variables
+        without a frequency dimension (:func:`stream_to_netcdf`).
 
     Raises
     ------
@@ -449,38 +614,62 @@ def run_to_folder(
         case = load_case(case, force=force)
     _stationary_only(case)  # before the folder is touched
     with staged_folder(outdir, RUN_FILES) as stage:
-        ds = run(case)
-        table = summary_table(summary(ds, bands=case.output.rms_bands))
-        header = case_header(case)
-        contact = contact_line(ds)
-        footer = [contact, *criteria_lines(ds)]
-        criteria = criteria_table(ds)
-        per_car = car_table(table, ds)
-        cars = [] if per_car is None else [("Per car and for the train", per_car)]
-        extra = [("Contact check per wheel", contact_table(ds)), *cars, ("Criteria", criteria)]
-        files = [
-            save_netcdf(ds, stage.path / "results.nc"),
-            *(save_csv(ds, stage.path / f"{name}.csv", variable=name) for name in PSD_CSV),
-            write_text(
-                stage.path / "summary.csv",
-                summary_csv(table, header, footer, extra=cars),
-            ),
-            write_text(
-                stage.path / "summary.md",
-                summary_markdown(table, header, footer, title=case.title, extra=extra),
-            ),
-            write_text(stage.path / "criteria.csv", criteria.to_csv(index=False)),
-        ]
-        if "octave_level_acceleration" in ds:
-            octaves = octave_table(ds).to_csv(float_format="%.2f")
-            files.append(write_text(stage.path / "third_octave.csv", octaves))
-        if plots:
-            from railvib.plot.criteria import save_criteria_plots  # matplotlib: when plotting
-            from railvib.plot.psd import save_overview
-
-            files += save_overview(ds, stage.path)
-            files += save_criteria_plots(ds, stage.path)
-    files = stage.finals(files)
-    note = linearity_note(ds)
+        system, grid, spectrum, options = _prepared(case)
+        nc = stage.path / "results.nc"
+        if grid.f.size > STREAM_FREQUENCIES:  # written block by block, then read from the file
+            result = stream_to_netcdf(system, grid, spectrum, nc, **options)
+            ds = open_netcdf(nc, drop=("frf_displacement", "frf_force"))
+        else:
+            ds = result = run_system(system, grid, spectrum, **options)
+            save_netcdf(ds, nc)
+        with ds:
+            files, table, header, footer = _write_run(case, ds, stage.path, plots)
+    files = stage.finals([nc, *files])
+    note = linearity_note(result)
     notes = () if note is None else (note,)
-    return RunOutput(ds, table, tuple(files), notes, tuple(header), contact, tuple(footer[1:]))
+    return RunOutput(
+        result, table, tuple(files), notes, tuple(header), footer[0], tuple(footer[1:])
+    )
+
+
+#: the per-frequency variables the figures draw line by line
+_PLOTTED = ("psd_acceleration", "psd_force", "psd_floor_acceleration")
+
+
+def _write_run(
+    case: Case, ds: xr.Dataset, folder: Path, plots: bool
+) -> tuple[list[Path], pd.DataFrame, list[str], list[str]]:
+    """The files of :func:`run_to_folder` besides ``results.nc``, its table and summary lines."""
+    table = summary_table(summary(ds, bands=case.output.rms_bands))
+    header = case_header(case)
+    contact = contact_line(ds)
+    footer = [contact, *criteria_lines(ds)]
+    criteria = criteria_table(ds)
+    per_car = car_table(table, ds)
+    cars = [] if per_car is None else [("Per car and for the train", per_car)]
+    extra = [("Contact check per wheel", contact_table(ds)), *cars, ("Criteria", criteria)]
+    files = [
+        *(save_csv(ds, folder / f"{name}.csv", variable=name) for name in PSD_CSV),
+        write_text(
+            folder / "summary.csv",
+            summary_csv(table, header, footer, extra=cars),
+        ),
+        write_text(
+            folder / "summary.md",
+            summary_markdown(table, header, footer, title=case.title, extra=extra),
+        ),
+        write_text(folder / "criteria.csv", criteria.to_csv(index=False)),
+    ]
+    if "octave_level_acceleration" in ds:
+        octaves = octave_table(ds).to_csv(float_format="%.2f")
+        files.append(write_text(folder / "third_octave.csv", octaves))
+    if plots:
+        from railvib.plot.criteria import save_criteria_plots  # matplotlib: when plotting
+        from railvib.plot.psd import save_overview
+
+        for name in _PLOTTED:  # a streamed file's: read once, not once per line drawn
+            if name in ds:
+                ds[name].load()
+        files += save_overview(ds, folder)
+        files += save_criteria_plots(ds, folder)
+    return files, table, header, footer

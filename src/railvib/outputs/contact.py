@@ -112,20 +112,57 @@ class ContactCheck(DerivedOutput):
         f = ds["frequency"].values
         psd = ds["psd_force"]
         axis = psd.get_axis_num("frequency")
-        dims = tuple(d for d in psd.dims if d != "frequency")
-        sigma = np.sqrt(trapezoid(psd.values, f, axis=axis))
+        dims = tuple(str(d) for d in psd.dims if d != "frequency")
         p0 = ds["static_contact_load"].broadcast_like(psd.isel(frequency=0, drop=True))
-        p0_values = p0.transpose(*dims).values
-        probability = ndtr(-p0_values / np.maximum(sigma, np.finfo(float).tiny))
-        attrs = self.variable_attrs(float(f[0]), float(f[-1]))
-        worst = xr.DataArray(probability, dims=dims).max("wheel")
+        checked = self.variables(
+            trapezoid(psd.values, f, axis=axis),
+            p0.transpose(*dims).values,
+            dims,
+            float(f[0]),
+            float(f[-1]),
+        )
+        return {name: xr.DataArray(var) for name, var in checked.items()}
+
+    def variables(
+        self,
+        mean_square: NDArray[np.float64],
+        static_load: NDArray[np.float64],
+        dims: tuple[str, ...],
+        f_lo: float,
+        f_hi: float,
+    ) -> dict[str, xr.Variable]:
+        """The variables of :meth:`compute` from the mean square of the contact forces.
+
+        Parameters
+        ----------
+        mean_square : numpy.ndarray
+            Integral of each contact force's PSD over the grid, N^2 (over `dims`).
+        static_load : numpy.ndarray
+            The static load of each contact, N, the shape of `mean_square`.
+        dims : tuple of str
+            The dimensions of `mean_square`, ``wheel`` among them.
+        f_lo, f_hi : float
+            The band of the integral, Hz (the ends of the frequency grid).
+
+        Returns
+        -------
+        dict of xarray.Variable
+            ``contact_force_rms`` (N) and ``loss_of_contact_probability`` over `dims`,
+            ``linear_model_valid`` over `dims` without ``wheel``.
+        """
+        sigma = np.sqrt(mean_square)
+        probability = ndtr(-static_load / np.maximum(sigma, np.finfo(float).tiny))
+        attrs = self.variable_attrs(f_lo, f_hi)
+        # the worst wheel, NaN skipped as xarray's max skips it
+        worst = np.fmax.reduce(probability, axis=dims.index("wheel"))
+        rest = tuple(d for d in dims if d != "wheel")
         return {
-            "contact_force_rms": xr.DataArray(sigma, dims=dims, attrs=attrs["contact_force_rms"]),
-            "loss_of_contact_probability": xr.DataArray(
-                probability, dims=dims, attrs=attrs["loss_of_contact_probability"]
+            "contact_force_rms": xr.Variable(dims, sigma, attrs["contact_force_rms"]),
+            "loss_of_contact_probability": xr.Variable(
+                dims, probability, attrs["loss_of_contact_probability"]
             ),
-            "linear_model_valid": (worst <= self.loss_of_contact_threshold).assign_attrs(
-                attrs["linear_model_valid"]
+            "linear_model_valid": xr.Variable(
+                rest, worst <= self.loss_of_contact_threshold, attrs["linear_model_valid"]
             ),
         }
 

@@ -18,6 +18,8 @@ over the bay, per bay of one rail.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
@@ -27,7 +29,12 @@ from railvib.grid import trapezoid
 from railvib.pads.scaled import ScaledPad
 from railvib.track.slab import SlabTrack
 
-__all__ = ["gives_seat_forces", "seat_positions", "support_force_variables"]
+__all__ = [
+    "gives_seat_forces",
+    "seat_positions",
+    "support_force_data",
+    "support_force_variables",
+]
 
 
 def seat_positions(wheel_positions: NDArray[np.float64], spacing: float) -> NDArray[np.float64]:
@@ -101,6 +108,39 @@ def support_force_variables(
         ``foundation`` alone for a slab bay on a continuous foundation) and
         ``support_position`` (``wheel``, m); empty for a track without seat forces.
     """
+    out = support_force_data(system, ds, rail)
+    coords = {k: out.pop(k) for k in SUPPORT_COORDS if k in out}
+    return {
+        name: xr.DataArray(var, coords={k: c for k, c in coords.items() if c.dims[0] in var.dims})
+        for name, var in out.items()
+    }
+
+
+def support_force_data(
+    system: CoupledSystem,
+    ds: xr.Dataset | Mapping[str, xr.Variable],
+    rail: NDArray[np.complex128] | None = None,
+) -> dict[str, xr.Variable]:
+    """:func:`support_force_variables` as variables, not yet a dataset's.
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The system of the result.
+    ds : xarray.Dataset or mapping
+        ``frequency`` (Hz), ``frf_force`` (N/m) and ``irregularity_psd`` (m^2/Hz), as
+        in :func:`support_force_variables` or as variables by name.
+    rail : numpy.ndarray, optional
+        The rail displacement at the seats per metre of irregularity, m/m, as in
+        :func:`support_force_variables`.
+
+    Returns
+    -------
+    dict of xarray.Variable
+        ``psd_support_force`` and ``support_force_rms``, and their coordinates
+        (:data:`SUPPORT_COORDS`: ``layer`` and ``support_position``); empty for a track
+        without seat forces.
+    """
     track = system.track
     f = ds["frequency"].values
     s_r = ds["irregularity_psd"].values
@@ -137,30 +177,38 @@ def support_force_variables(
     return _variables(f, seats, names, psd)
 
 
+#: the coordinates among :func:`support_force_data`'s variables
+SUPPORT_COORDS = ("layer", "support_position")
+
+#: the long name of the ``layer`` coordinate
+LAYER_LONG_NAME = "layer of the rail seat, top down"
+
+
 def _variables(
     f: NDArray[np.float64], seats: NDArray[np.float64], names: list[str], psd: NDArray[np.float64]
-) -> dict[str, xr.DataArray]:
+) -> dict[str, xr.Variable]:
     """The support-force variables of `psd` (N^2/Hz, ``(frequency, wheel, layer)``)."""
     coords = {
-        "layer": ("layer", names, {"long_name": "layer of the rail seat, top down"}),
-        "support_position": (
+        "layer": xr.IndexVariable(
+            "layer", names, {"long_name": "layer of the rail seat, top down"}
+        ),
+        "support_position": xr.Variable(
             "wheel",
             seats,
             {"units": "m", "long_name": "rail seat under each wheel (the nearest one)"},
         ),
     }
     where = "through the rail seat nearest each wheel, per seat of one rail"
-    return {
-        "psd_support_force": xr.DataArray(
+    data = {
+        "psd_support_force": xr.Variable(
+            ("frequency", "wheel", "layer"),
             psd,
-            dims=("frequency", "wheel", "layer"),
-            coords=coords,
-            attrs={"units": "N^2/Hz", "long_name": f"PSD of the force in each layer {where}"},
+            {"units": "N^2/Hz", "long_name": f"PSD of the force in each layer {where}"},
         ),
-        "support_force_rms": xr.DataArray(
+        "support_force_rms": xr.Variable(
+            ("wheel", "layer"),
             np.sqrt(trapezoid(psd, f, axis=0)),
-            dims=("wheel", "layer"),
-            coords=coords,
-            attrs={"units": "N", "long_name": f"RMS of the force in each layer {where}"},
+            {"units": "N", "long_name": f"RMS of the force in each layer {where}"},
         ),
     }
+    return data | coords

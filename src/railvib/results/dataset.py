@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import csv
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -15,16 +15,22 @@ from railvib.errors import NonFiniteResult
 from railvib.io import atomic_path
 from railvib.labels import displacement_unit
 from railvib.response import FRF
-from railvib.results.units import QUANTITY_UNITS, quantity_unit, with_unit_coordinates
+from railvib.results.units import QUANTITY_UNITS, quantity_unit, unit_coordinates
 from railvib.results.variables import VARIABLES, compute_variables
 
 __all__ = [
+    "PSD_CONVENTION",
+    "assemble",
     "atomic_path",
     "build_dataset",
     "build_dataset_blocks",
     "check_finite",
+    "check_finite_variables",
     "column_units",
     "load_netcdf",
+    "open_netcdf",
+    "per_frequency_values",
+    "result_variables",
     "save_csv",
     "save_netcdf",
 ]
@@ -101,6 +107,37 @@ def build_dataset_blocks(
     xarray.Dataset
         As :func:`build_dataset`.
     """
+    values, labels, n_wheel = per_frequency_values(f, blocks, irregularity_psd)
+    variables, coords = result_variables(f, labels, n_wheel, values)
+    data: dict[str, xr.Variable | xr.DataArray] = {**variables, **(extra or {})}
+    return assemble(data, coords, attrs)  # one alignment for all, not one per variable
+
+
+def per_frequency_values(
+    f: NDArray[np.float64],
+    blocks: Iterable[tuple[slice, FRF]],
+    irregularity_psd: NDArray[np.float64],
+) -> tuple[dict[str, NDArray[np.generic]], tuple[str, ...], int]:
+    """The values of every variable of :data:`VARIABLES` over `f`, filled block by block.
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        All frequencies, Hz, ``(n_freq,)``.
+    blocks : iterable of (slice, FRF)
+        Indices into `f` and the responses there, covering `f` (no batch axes).
+    irregularity_psd : numpy.ndarray
+        One-sided temporal irregularity PSD applied, m^2/Hz, ``(n_freq,)``.
+
+    Returns
+    -------
+    values : dict of numpy.ndarray
+        By variable name, ``(n_freq[, n])``.
+    labels : tuple of str
+        The response labels.
+    n_wheel : int
+        The number of wheels.
+    """
     s_r = np.asarray(irregularity_psd, dtype=float)
     values: dict[str, NDArray[np.generic]] = {}
     frf: FRF | None = None
@@ -110,23 +147,87 @@ def build_dataset_blocks(
                 values[name] = np.empty((f.size, *value.shape[1:]), dtype=value.dtype)
             values[name][sl] = value
     assert frf is not None, "at least one block"
-    labels = list(frf.labels)
+    return values, frf.labels, frf.n_wheel
+
+
+def result_variables(
+    f: NDArray[np.float64],
+    labels: Sequence[str],
+    n_wheel: int,
+    values: Mapping[str, NDArray[np.generic]],
+) -> tuple[dict[str, xr.Variable], dict[str, xr.Variable]]:
+    """The variables of :data:`VARIABLES` and the coordinates of a run, without a dataset.
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        The frequencies of `values`, Hz.
+    labels : sequence of str
+        The response labels.
+    n_wheel : int
+        The number of wheels.
+    values : mapping of str to numpy.ndarray
+        The values of each variable of :data:`VARIABLES` (:func:`per_frequency_values`),
+        in the unit of each variable; wrapped, not copied.
+
+    Returns
+    -------
+    data : dict of xarray.Variable
+        Each variable with its ``units``, ``long_name`` and, where its unit differs
+        between responses, ``units_coordinate`` (:mod:`railvib.results.units`).
+    coords : dict of xarray.Variable
+        ``frequency`` (Hz), ``response``, ``displacement_unit``, the units coordinates
+        and ``wheel``.
+    """
+    labels = list(labels)
+    quantities = {name: name for name, v in VARIABLES.items() if v.extra_dim == "response"}
+    unit_coords, named = unit_coordinates(
+        {k: q for k, q in quantities.items() if q in QUANTITY_UNITS}, labels
+    )
+    data: dict[str, xr.Variable] = {}
+    for name, var in VARIABLES.items():
+        attrs = var.attrs
+        if name in named:
+            attrs["units_coordinate"] = named[name]
+        data[name] = xr.Variable(var.dims, values[name], attrs)
     coords = {
-        "frequency": ("frequency", f, {"units": "Hz", "long_name": "frequency"}),
-        "response": ("response", labels, {"long_name": "response"}),
-        "displacement_unit": (
+        "frequency": xr.IndexVariable("frequency", f, {"units": "Hz", "long_name": "frequency"}),
+        "response": xr.IndexVariable("response", labels, {"long_name": "response"}),
+        "displacement_unit": xr.Variable(
             "response",
             [displacement_unit(lab) for lab in labels],
             {"long_name": "unit of the displacement"},
         ),
-        "wheel": ("wheel", np.arange(1, frf.n_wheel + 1), {"long_name": "wheel"}),
+        **unit_coords,
+        "wheel": xr.IndexVariable("wheel", np.arange(1, n_wheel + 1), {"long_name": "wheel"}),
     }
-    data: dict[str, Any] = {
-        name: (var.dims, values[name], var.attrs) for name, var in VARIABLES.items()
-    }
-    data.update(extra or {})  # one alignment for all, not one per variable
-    ds = xr.Dataset(data, coords=coords, attrs={"psd_convention": PSD_CONVENTION, **(attrs or {})})
-    return with_unit_coordinates(ds, {name: name for name in VARIABLES if name in QUANTITY_UNITS})
+    return data, coords
+
+
+def assemble(
+    data: Mapping[str, xr.Variable | xr.DataArray],
+    coords: Mapping[str, xr.Variable],
+    attrs: Mapping[str, Any] | None = None,
+) -> xr.Dataset:
+    """One result dataset from its variables, built once (no merge of one variable at a time).
+
+    Parameters
+    ----------
+    data : mapping
+        The data variables, in their order.
+    coords : mapping of str to xarray.Variable
+        The coordinates.
+    attrs : mapping, optional
+        Global attributes, after :data:`PSD_CONVENTION` (``psd_convention``).
+
+    Returns
+    -------
+    xarray.Dataset
+        Over the arrays given (no copy).
+    """
+    return xr.Dataset(
+        dict(data), coords=dict(coords), attrs={"psd_convention": PSD_CONVENTION, **(attrs or {})}
+    )
 
 
 def _split_complex(ds: xr.Dataset) -> xr.Dataset:
@@ -189,20 +290,51 @@ def check_finite(ds: xr.Dataset) -> None:
         One line: the first variable with NaN or infinite values, at how many of the
         frequencies and the first of them (Hz), and the other variables affected.
     """
+    f = ds["frequency"].values if "frequency" in ds.coords else None
+    check_finite_variables({str(k): da.variable for k, da in ds.data_vars.items()}, f)
+
+
+def check_finite_variables(
+    data: Mapping[str, xr.Variable],
+    f: NDArray[np.float64] | None = None,
+    grid: NDArray[np.float64] | None = None,
+) -> None:
+    """:func:`check_finite` of a result's variables before they are a dataset.
+
+    Parameters
+    ----------
+    data : mapping of str to xarray.Variable
+        The data variables, in their order; the real and complex ones are checked.
+    f : numpy.ndarray, optional
+        The frequencies (Hz) of the ``frequency`` dimension, to name the first bad one.
+    grid : numpy.ndarray, optional
+        The whole grid (Hz) where `data` is one block of it (a streamed run), named in
+        the message beside the block.
+
+    Raises
+    ------
+    railvib.errors.NonFiniteResult
+        As :func:`check_finite`.
+    """
     bad = [
-        str(name)
-        for name, da in ds.data_vars.items()
-        if da.dtype.kind in "fc" and not np.isfinite(da.values).all()
+        name
+        for name, var in data.items()
+        if var.dtype.kind in "fc" and not np.isfinite(var.values).all()
     ]
     if not bad:
         return
-    da = ds[bad[0]]
+    var = data[bad[0]]
     where = ""
-    if "frequency" in da.dims:
-        axis = tuple(i for i, d in enumerate(da.dims) if d != "frequency")
-        hit = ~np.isfinite(da.values).all(axis=axis)
-        first = ds["frequency"].values[hit][0]
+    if "frequency" in var.dims and f is not None:
+        axis = tuple(i for i, d in enumerate(var.dims) if d != "frequency")
+        hit = ~np.isfinite(var.values).all(axis=axis)
+        first = f[hit][0]
         where = f" at {hit.sum()} of {hit.size} frequencies, the first at {first:g} Hz"
+        if grid is not None and f.size < grid.size:
+            where = (
+                f" at {hit.sum()} of the {hit.size} frequencies {f[0]:g}-{f[-1]:g} Hz "
+                f"(a block of the {grid.size}), the first at {first:g} Hz"
+            )
     others = ""
     if len(bad) > 1:
         names = ", ".join(bad[1:4]) + (", ..." if len(bad) > 4 else "")
@@ -265,7 +397,30 @@ def load_netcdf(path: str | Path) -> xr.Dataset:
     xarray.Dataset
         Loaded into memory.
     """
-    ds = xr.load_dataset(path, engine="h5netcdf")
+    return _decoded(xr.load_dataset(path, engine="h5netcdf"))
+
+
+def open_netcdf(path: str | Path, drop: Sequence[str] = ()) -> xr.Dataset:
+    """Open a file of :func:`save_netcdf` lazily: each variable is read when it is used.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file (e.g. a large grid's ``results.nc``).
+    drop : sequence of str
+        Variables not to open (e.g. the complex FRFs, which would be loaded).
+
+    Returns
+    -------
+    xarray.Dataset
+        Over the open file (close it, or use it in a ``with`` block); its complex and
+        boolean variables are recombined, and so loaded, on opening.
+    """
+    return _decoded(xr.open_dataset(path, engine="h5netcdf", drop_variables=list(drop)))
+
+
+def _decoded(ds: xr.Dataset) -> xr.Dataset:
+    """`ds` as stored by :func:`save_netcdf` with its complex and boolean variables restored."""
     for name, da in list(ds.data_vars.items()):
         attrs = dict(da.attrs)
         if attrs.pop("complex_stored_as", None) == "part":

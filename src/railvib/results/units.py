@@ -19,8 +19,7 @@ the displacement's).
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
-from typing import Any
+from collections.abc import Iterable, Mapping, Sequence
 
 import xarray as xr
 
@@ -34,6 +33,7 @@ __all__ = [
     "rms_quantity",
     "summary_quantity",
     "unit_coordinate_name",
+    "unit_coordinates",
     "with_unit_coordinates",
 ]
 
@@ -124,6 +124,40 @@ def unit_coordinate_name(quantity: str) -> str:
     return f"{quantity}_unit"
 
 
+def unit_coordinates(
+    quantities: Mapping[str, str], labels: Sequence[str]
+) -> tuple[dict[str, xr.Variable], dict[str, str]]:
+    """The per-response units coordinates of the variables `quantities` over responses `labels`.
+
+    Parameters
+    ----------
+    quantities : mapping of str to str
+        Variable name (over ``response``) -> its quantity (a key of :data:`QUANTITY_UNITS`).
+    labels : sequence of str
+        The response labels.
+
+    Returns
+    -------
+    coords : dict of str to xarray.Variable
+        ``<quantity>_unit`` -> the unit of each response, for each quantity whose unit
+        differs between the responses.
+    named : dict of str to str
+        Variable name -> the name of its units coordinate (the variables of `coords`).
+    """
+    coords: dict[str, xr.Variable] = {}
+    named: dict[str, str] = {}
+    for name, quantity in quantities.items():
+        units = response_units(quantity, labels)
+        if len(set(units)) < 2:
+            continue
+        coord = unit_coordinate_name(quantity)
+        if coord not in coords:
+            attrs = {"long_name": f"unit of the {quantity.replace('_', ' ')} of each response"}
+            coords[coord] = xr.Variable("response", units, attrs)
+        named[name] = coord
+    return coords, named
+
+
 def with_unit_coordinates(ds: xr.Dataset, quantities: Mapping[str, str]) -> xr.Dataset:
     """`ds` with a per-response units coordinate for each variable whose unit varies by response.
 
@@ -144,17 +178,14 @@ def with_unit_coordinates(ds: xr.Dataset, quantities: Mapping[str, str]) -> xr.D
     """
     out = ds.copy()  # new variables (and attribute dicts) over the same data
     labels = [str(r) for r in ds["response"].values] if "response" in ds.dims else []
-    coords: dict[str, Any] = {}
-    for name, quantity in quantities.items():
-        if name not in out.data_vars or "response" not in out[name].dims:
-            continue
-        units = response_units(quantity, labels)
-        if len(set(units)) < 2:
-            continue
-        coord = unit_coordinate_name(quantity)
-        if coord not in out.coords and coord not in coords:
-            attrs = {"long_name": f"unit of the {quantity.replace('_', ' ')} of each response"}
-            coords[coord] = ("response", units, attrs)
+    over = {
+        name: quantity
+        for name, quantity in quantities.items()
+        if name in out.data_vars and "response" in out[name].dims
+    }
+    coords, named = unit_coordinates(over, labels)
+    for name, coord in named.items():
         # in place on the copy: assigning a variable would align the whole dataset again
         out.variables[name].attrs["units_coordinate"] = coord
-    return out.assign_coords(coords) if coords else out
+    new = {k: v for k, v in coords.items() if k not in out.coords}
+    return out.assign_coords(new) if new else out
