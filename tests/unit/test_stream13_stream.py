@@ -155,3 +155,16 @@ def test_the_streaming_example_of_the_outputs_page_runs(tmp_path, monkeypatch):
     [block] = re.findall(r"```python\n(.*?)```", page.read_text(), flags=re.S)
     exec(compile(block, str(page), "exec"), {})  # noqa: S102
     assert load_netcdf(tmp_path / "big.nc").sizes["frequency"] == 2000
+
+
+def test_blocks_gathered_into_larger_writes_give_the_same_file(tmp_path, monkeypatch):
+    """Writes of several blocks (flushed when the next block would overflow, and at the end)."""
+    case, system, spectrum = _case("wang2017_metro")
+    grid = FrequencyGrid.linear(0.5, 100.0, 0.5)  # 200 frequencies
+    held = load_netcdf(save_netcdf(run_system(system, grid, spectrum), tmp_path / "held.nc"))
+    # 3 blocks of 23 fit one write of 70, the 4th flushes them; 200 = 8 x 23 + 16: a short tail
+    monkeypatch.setattr("railvib.results.stream.WRITE_FREQUENCIES", 70)
+    stream_to_netcdf(system, grid, spectrum, tmp_path / "results.nc", block=23)
+    _assert_equal_to_held(
+        held, load_netcdf(tmp_path / "results.nc"), system.vehicle.static_wheel_loads()
+    )
