@@ -16,7 +16,7 @@ from railvib.io import atomic_path
 from railvib.labels import displacement_unit
 from railvib.response import FRF
 from railvib.results.units import QUANTITY_UNITS, quantity_unit, unit_coordinates
-from railvib.results.variables import VARIABLES, compute_variables
+from railvib.results.variables import VARIABLES, compute_variables, write_variables
 
 __all__ = [
     "PSD_CONVENTION",
@@ -142,10 +142,11 @@ def per_frequency_values(
     values: dict[str, NDArray[np.generic]] = {}
     frf: FRF | None = None
     for sl, frf in blocks:
-        for name, value in compute_variables(frf, s_r[sl], VARIABLES).items():
-            if name not in values:
-                values[name] = np.empty((f.size, *value.shape[1:]), dtype=value.dtype)
-            values[name][sl] = value
+        if not values:  # the arrays laid out as the first block's values
+            one = FRF(frf.f[:1], frf.vehicle[:1], frf.rail[:1], frf.contact_force[:1], frf.dofs)
+            first = compute_variables(one, s_r[sl][:1], VARIABLES)
+            values = {k: np.empty((f.size, *v.shape[1:]), v.dtype) for k, v in first.items()}
+        write_variables({k: v[sl] for k, v in values.items()}, frf, s_r[sl])
     assert frf is not None, "at least one block"
     return values, frf.labels, frf.n_wheel
 

@@ -8,7 +8,7 @@ here.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +23,7 @@ __all__ = [
     "ResultVariable",
     "compute_variables",
     "response_psds",
+    "write_variables",
 ]
 
 _Compute = Callable[[FRF, NDArray[np.float64]], NDArray[np.generic]]
@@ -181,6 +182,38 @@ def compute_variables(
     """
     s_r = np.asarray(irregularity_psd, dtype=float)
     return {name: VARIABLES[name].compute(frf, s_r) for name in names}
+
+
+def write_variables(
+    out: Mapping[str, NDArray[np.generic]], frf: FRF, irregularity_psd: NDArray[np.float64]
+) -> None:
+    """The values of every variable of :data:`VARIABLES` written into `out`, in place.
+
+    The same operations on the same values as :func:`compute_variables` (bit for bit),
+    without its temporaries: the vehicle's and the rail's parts written into their
+    columns (no joined copy), ``psd_acceleration`` from the ``psd_displacement`` just
+    written (``|H|^2 S_r`` once), each result straight into its place.
+
+    Parameters
+    ----------
+    out : mapping of str to numpy.ndarray
+        By name of every variable of :data:`VARIABLES`, the arrays to fill, ``(n_freq[,
+        n_resp or n_wheel])`` (e.g. one block's rows of the whole grid's arrays).
+    frf : FRF
+        Responses per metre of irregularity, ``(n_freq, ...)`` (no batch axes).
+    irregularity_psd : numpy.ndarray
+        One-sided temporal irregularity PSD, m^2/Hz, ``(n_freq,)``.
+    """
+    s_r = np.asarray(irregularity_psd, dtype=float)
+    n_dof = frf.vehicle.shape[-1]
+    displacement = out["frf_displacement"]
+    displacement[:, :n_dof] = frf.vehicle
+    displacement[:, n_dof:] = frf.rail
+    np.multiply(np.abs(displacement) ** 2, s_r[:, None], out=out["psd_displacement"])
+    np.multiply(out["psd_displacement"], _omega4(frf.f), out=out["psd_acceleration"])
+    out["frf_force"][...] = frf.contact_force
+    np.multiply(np.abs(frf.contact_force) ** 2, s_r[:, None], out=out["psd_force"])
+    out["irregularity_psd"][...] = s_r
 
 
 def response_psds(
