@@ -177,7 +177,7 @@ def _keys_of(
     if (
         hit is None
         or len(hit[0]) != len(members)
-        or any(a is not b for a, b in zip(hit[0], members))
+        or any(a is not b for a, b in zip(hit[0], members, strict=True))
     ):
         hit = (members, keys())
         _KEYS[table] = hit
