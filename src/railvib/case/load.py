@@ -21,7 +21,13 @@ from railvib.pads import PadModel
 from railvib.presets import DEFAULT_PRESET, load_preset, load_vehicle_preset
 from railvib.registry import merge_tables, resolve_paths
 
-__all__ = ["case_from_dict", "load_case", "load_preset_case", "merge_case_dicts"]
+__all__ = [
+    "case_from_dict",
+    "case_with_table",
+    "load_case",
+    "load_preset_case",
+    "merge_case_dicts",
+]
 
 
 def load_case(path: str | Path, *, force: bool = False) -> Case:
@@ -125,6 +131,79 @@ def case_from_dict(
     return case
 
 
+def case_with_table(
+    base_data: dict[str, Any],
+    base_case: Case,
+    key: str,
+    value: Any,
+    base_dir: str | Path | None = None,
+    *,
+    warn: bool = True,
+) -> Case:
+    """Validate the case `base_data` with `value` merged onto its table `key`.
+
+    The same checks, errors and warnings as ``case_from_dict(merge_case_dicts(base_data,
+    {key: value}), base_dir)``, without validating again what `value` cannot change:
+    the other tables are taken from `base_case` as they are (validated sections are
+    not validated again) and their family tables are not built again. The grid size,
+    the track and pad on the grid, the RMS bands and the plausibility warnings are
+    checked as :func:`case_from_dict` checks them. For a sweep's axis values, each
+    checked against one base case.
+
+    Parameters
+    ----------
+    base_data : dict
+        A resolved case without a preset (e.g. a sweep's base case, as a JSON-able table).
+    base_case : Case
+        ``case_from_dict(base_data, base_dir)``.
+    key : str
+        A top-level table or field of the case, e.g. ``"track"``.
+    value : object
+        Merged onto ``base_data[key]`` (:func:`merge_case_dicts`).
+    base_dir : str or pathlib.Path, optional
+        Directory against which relative file paths in `value` are resolved.
+    warn : bool
+        Issue the plausibility warnings.
+
+    Returns
+    -------
+    Case
+
+    Raises
+    ------
+    CaseError
+        With the dotted field name, the value and what is allowed.
+    """
+    if key == "preset" or "preset" in base_data:
+        raise ValueError("case_with_table takes a resolved base case and a case field")
+    old = {key: base_data[key]} if key in base_data else {}
+    data = merge_case_dicts(old, {key: value})  # a copy
+    check_nesting(data, "case")
+    tables = {**base_data, **data}
+    own_track, output = tables.get("track"), tables.get("output")
+    temperature_given = isinstance(own_track, dict) and "pad_temperature_c" in own_track
+    bands_given = isinstance(output, dict) and "rms_bands" in output
+    if key == "vehicle":
+        _resolve_vehicle(data, None if base_dir is None else Path(base_dir))
+    if base_dir is not None:
+        for location, family in FAMILY_TABLES.items():
+            if location[0] == key:
+                resolve_paths(_table_at(data, location), family, Path(base_dir))
+    fields = {name: getattr(base_case, name) for name in Case.model_fields}
+    fields = {name: v for name, v in fields.items() if v is not None} | data
+    try:
+        case = Case.model_validate(fields)
+    except ValidationError as exc:
+        raise case_error(exc, Case) from None
+    check_grid_size(case)
+    pad, f = _check_models(case, key)
+    case = _fit_bands(case, f, bands_given)
+    if warn:
+        for warning in plausibility_warnings(case, pad, f, temperature_given=temperature_given):
+            warnings.warn(warning, stacklevel=2)
+    return case
+
+
 def load_preset_case(name: str = DEFAULT_PRESET) -> Case:
     """The validated case of preset `name` (``railvib.load_preset_case``).
 
@@ -206,15 +285,19 @@ def _table_at(data: Any, location: tuple[str, ...]) -> Any:
     return data
 
 
-def _check_models(case: Case) -> tuple[PadModel, NDArray[np.float64]]:
+def _check_models(case: Case, key: str | None = None) -> tuple[PadModel, NDArray[np.float64]]:
     """Build every family table of the case, and evaluate the pad on the case's grid.
 
     So an unknown model, a bad parameter, a pad that is not passive somewhere on
     the grid, or a temperature the pad's WLF law cannot take, is reported as a case
     error before anything runs. Returns the pad and the grid's frequencies (Hz).
+    With `key`, only the family tables of the case's table `key` are built (the
+    others were built when the case they come from was validated).
     """
     data = case.model_dump(mode="python")
     for location, family in FAMILY_TABLES.items():
+        if key is not None and location[0] != key:
+            continue
         table = _table_at(data, location)
         if table is not None:  # an optional table left out (its model's needs are checked)
             family.from_dict(table, ".".join(location))

@@ -9,6 +9,7 @@ the key names another unit (``speed_kmh``, ``temperature_c``).
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from typing import Any, Literal
 
 import tomli_w
@@ -159,13 +160,37 @@ def _vehicle_parameters() -> tuple[Parameter, ...]:
     return tuple(params)
 
 
+#: table name -> (the registry's members, the table's keys computed from them)
+_KEYS: dict[str, tuple[tuple[Any, ...], tuple[Parameter, ...]]] = {}
+
+
+def _keys_of(
+    table: str, registry: Registry[Any], keys: Callable[[], tuple[Parameter, ...]]
+) -> tuple[Parameter, ...]:
+    """``keys()``, computed again only when `registry`'s (frozen) members have changed.
+
+    Every case's validation checks its ``[vehicle]`` and ``[track]`` keys against them;
+    computing them is most of that check's time.
+    """
+    members = tuple(registry)
+    hit = _KEYS.get(table)
+    if (
+        hit is None
+        or len(hit[0]) != len(members)
+        or any(a is not b for a, b in zip(hit[0], members, strict=True))
+    ):
+        hit = (members, keys())
+        _KEYS[table] = hit
+    return hit[1]
+
+
 def _check_vehicle(self: Section) -> Section:
     """Refuse keys of another vehicle model, require the model's own, and build it."""
     name = getattr(self, "model", None) or DEFAULT_VEHICLE_MODEL
     member = VEHICLES.get(name, "vehicle")
     own = {p.key: p for p in member.parameters}
     values = {}
-    for p in _vehicle_parameters()[1:]:
+    for p in _keys_of("vehicle", VEHICLES, _vehicle_parameters)[1:]:
         value = getattr(self, p.key)
         if p.key not in own and value is not None:
             raise CaseError(
@@ -230,7 +255,7 @@ def _check_track_keys(self: Section) -> Section:
     name = getattr(self, "model", None) or DEFAULT_TRACK_MODEL
     member = TRACKS.get(name, "track")
     own = {p.key: p for p in member.parameters}
-    for p in _track_parameters()[1:]:
+    for p in _keys_of("track", TRACKS, _track_parameters)[1:]:
         value = getattr(self, p.key)
         if p.key not in own and value is not None:
             raise CaseError(

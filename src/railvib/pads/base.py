@@ -15,7 +15,7 @@ parameters are checked on construction, cross-parameter conditions in
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -134,6 +134,32 @@ class PadModel(ABC):
         numpy.ndarray of complex
             ``K' + i K''`` in N/m, ``exp(+i omega t)`` convention.
         """
+
+    @classmethod
+    def stiffness_rows(
+        cls, pads: Sequence[PadModel], f: NDArray[np.float64]
+    ) -> NDArray[np.complex128]:
+        """``K*`` in N/m of pads of this model, each at its own row of frequencies.
+
+        Models whose stiffness is written over arrays of their parameters override
+        this (one pass for all the pads); here each pad is evaluated in turn.
+
+        Parameters
+        ----------
+        pads : sequence of PadModel
+            Pads of this model, ``n``, at their reference (no temperature given).
+        f : numpy.ndarray
+            Frequencies in Hz, ``(n, n_freq)``: row ``i`` for ``pads[i]``.
+
+        Returns
+        -------
+        numpy.ndarray of complex
+            ``(n, n_freq)``; row ``i`` is ``pads[i].stiffness(f[i])``.
+        """
+        out = np.empty(f.shape, dtype=np.complex128)
+        for i, pad in enumerate(pads):
+            out[i] = pad.stiffness(f[i])
+        return out
 
     @fill_doc(_SHARED)
     def storage(self, f: ArrayLike, temperature: float | None = None) -> NDArray[np.float64]:

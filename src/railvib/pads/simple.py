@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -77,6 +78,29 @@ class SpringDamper(PadModel):
         return self.stiffness_n_per_m + 2j * np.pi * f * self.damping_ns_per_m
 
     @classmethod
+    def stiffness_rows(
+        cls, pads: Sequence[PadModel], f: NDArray[np.float64]
+    ) -> NDArray[np.complex128]:
+        """:meth:`stiffness` of every pad at once, over arrays of the parameters (N/m).
+
+        Parameters
+        ----------
+        pads : sequence of SpringDamper
+            The pads, ``n``.
+        f : numpy.ndarray
+            Frequencies in Hz, ``(n, n_freq)``: row ``i`` for ``pads[i]``.
+
+        Returns
+        -------
+        numpy.ndarray of complex
+            ``(n, n_freq)``, the same operations as :meth:`stiffness`, pad by pad.
+        """
+        own = cast("Sequence[SpringDamper]", pads)
+        k = np.array([p.stiffness_n_per_m for p in own], dtype=float).reshape(-1, 1)
+        c = np.array([p.damping_ns_per_m for p in own], dtype=float).reshape(-1, 1)
+        return np.asarray(k + 2j * np.pi * f * c, dtype=np.complex128)
+
+    @classmethod
     def fit_starts(
         cls, f: NDArray[np.float64], k: NDArray[np.complex128], *, n_terms: int | None, f0_hz: float
     ) -> list[FitStart]:
@@ -118,6 +142,30 @@ class Hysteretic(PadModel):
         """``k (1 + i eta)`` in N/m, broadcast to the shape of `f`."""
         f = np.asarray(f, dtype=float)
         return np.full(f.shape, self.stiffness_n_per_m * (1.0 + 1j * self.loss_factor_))
+
+    @classmethod
+    def stiffness_rows(
+        cls, pads: Sequence[PadModel], f: NDArray[np.float64]
+    ) -> NDArray[np.complex128]:
+        """:meth:`stiffness` of every pad at once (N/m): one constant per pad.
+
+        Parameters
+        ----------
+        pads : sequence of Hysteretic
+            The pads, ``n``.
+        f : numpy.ndarray
+            Frequencies in Hz, ``(n, n_freq)``: row ``i`` for ``pads[i]``.
+
+        Returns
+        -------
+        numpy.ndarray of complex
+            ``(n, n_freq)``, each pad's ``k (1 + i eta)`` as :meth:`stiffness` computes it.
+        """
+        k = [
+            p.stiffness_n_per_m * (1.0 + 1j * p.loss_factor_)
+            for p in cast("Sequence[Hysteretic]", pads)
+        ]
+        return np.broadcast_to(np.array(k, dtype=np.complex128).reshape(-1, 1), f.shape).copy()
 
     @classmethod
     def fit_starts(

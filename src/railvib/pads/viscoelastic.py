@@ -6,6 +6,7 @@ in ``__post_init__`` (see each class).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -98,6 +99,38 @@ class FractionalZener(PadModel):
         # (i x)^alpha = x^alpha exp(i alpha pi / 2) for x >= 0, written out to stay exact
         z = (2 * np.pi * f * self.tau_s) ** self.alpha * np.exp(0.5j * np.pi * self.alpha)
         return self.k0_n_per_m + (self.k_inf_n_per_m - self.k0_n_per_m) * (z / (1.0 + z))
+
+    @classmethod
+    def stiffness_rows(
+        cls, pads: Sequence[PadModel], f: NDArray[np.float64]
+    ) -> NDArray[np.complex128]:
+        """:meth:`stiffness` of every pad at once, over arrays of the parameters (N/m).
+
+        Parameters
+        ----------
+        pads : sequence of FractionalZener
+            The pads, ``n``.
+        f : numpy.ndarray
+            Frequencies in Hz, ``(n, n_freq)``: row ``i`` for ``pads[i]``.
+
+        Returns
+        -------
+        numpy.ndarray of complex
+            ``(n, n_freq)``, the same operations as :meth:`stiffness`, pad by pad.
+        """
+        k0, k_inf, tau, alpha = (
+            np.array([[getattr(p, name)] for p in pads], dtype=float).reshape(-1, 1)
+            for name in ("k0_n_per_m", "k_inf_n_per_m", "tau_s", "alpha")
+        )
+        x = 2 * np.pi * f * tau
+        # the power row by row, with a scalar exponent, as `stiffness` takes it: NumPy's
+        # power may take another path for another exponent or array (e.g. sqrt for 0.5,
+        # SIMD lanes), which can change the last bit
+        power = np.empty(x.shape, dtype=float)
+        for i, a in enumerate(alpha[:, 0]):
+            power[i] = x[i] ** float(a)
+        z = power * np.exp(0.5j * np.pi * alpha)
+        return np.asarray(k0 + (k_inf - k0) * (z / (1.0 + z)), dtype=np.complex128)
 
 
 @PADS.register("generalized_maxwell", aliases=("prony",))
