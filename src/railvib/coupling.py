@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.coupled_kernel import fused_kernel, fused_points
 from railvib.coupled_kernel import kernel as coupled_kernel
 from railvib.errors import CaseError
+from railvib.pads.stack import pad_stiffnesses
 from railvib.pem import excitation_vector, wheel_delays
 from railvib.response import FRF
 from railvib.stack import dot, entries, put, solve, stacked, to_numpy
@@ -269,6 +270,38 @@ def compiled_solve(n_points: int, n_wheels: int, compiled: bool | None = None) -
     return wanted and coupled_kernel() is not None
 
 
+def _pad_supports(
+    tracks: Sequence[PeriodicTrack], f: NDArray[np.float64]
+) -> dict[int, NDArray[np.complex128]]:
+    """The supports of the tracks whose support is their pad alone, evaluated together.
+
+    Parameters
+    ----------
+    tracks : sequence of PeriodicTrack
+        The tracks of one stack.
+    f : numpy.ndarray
+        Frequencies in Hz, ``(n_freq,)``.
+
+    Returns
+    -------
+    dict of int to numpy.ndarray
+        By index into `tracks`, ``K*(f)`` in N/m (:func:`railvib.pads.stack.pad_stiffnesses`:
+        the pads of one model over arrays of their parameters, bit for bit each
+        track's ``support_stiffness``); tracks with layers below the pad are left out.
+    """
+    plain = [
+        i
+        for i, track in enumerate(tracks)
+        if type(track).support_stiffness is PeriodicTrack.support_stiffness
+    ]
+    if not plain:
+        return {}
+    rows = pad_stiffnesses(
+        [tracks[i].pad for i in plain], [tracks[i].pad_temperature for i in plain], f
+    )
+    return dict(zip(plain, rows, strict=True))
+
+
 def _stackable(track: PeriodicTrack) -> bool:
     """Whether the stacked kernel gives `track`'s receptance: an Euler rail, the wave solver."""
     return type(track).receptance is PeriodicTrack.receptance and not track.rail.is_timoshenko
@@ -330,14 +363,17 @@ def track_receptances(
         b4 = np.empty(n_points, dtype=np.complex128)
         k = np.empty(n_points, dtype=np.complex128)
         sc = np.empty(n_points, dtype=np.complex128)
+        for i in members:
+            tracks[i].check_frequencies(f)
+        pad_k = _pad_supports([tracks[i] for i in members], f)
         for row, i in enumerate(members):
             track = tracks[i]
-            track.check_frequencies(f)
             d, ei = track.sleeper_spacing, _complex_ei(track)
             rows = slice(row * f.size, (row + 1) * f.size)
             # the wave solver's expressions, operation for operation
             b4[rows] = track.rail.mass_per_length * omega**2 * d**4 / ei
-            k[rows] = track.support_stiffness(f) * d**3 / ei
+            support = pad_k[row] if row in pad_k else track.support_stiffness(f)
+            k[rows] = support * d**3 / ei
             sc[rows] = d**3 / ei
         points = np.tile(f, len(members))
         x = np.array(x_d)
