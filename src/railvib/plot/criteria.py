@@ -11,6 +11,7 @@ from matplotlib.axes import Axes
 from railvib.io import new_figure, save_figure
 from railvib.outputs.comfort import ISO2631_COMFORT
 from railvib.outputs.weighting import WEIGHTINGS
+from railvib.plot.axes import SuperscriptLogFormatter
 
 __all__ = ["comfort_panel", "octave_bars", "save_criteria_plots"]
 
@@ -61,6 +62,9 @@ def comfort_panel(ds: xr.Dataset, axes: tuple[Axes, Axes]) -> None:
     floors = ds["floor"].values
     for k, s in enumerate(floors):
         left.loglog(f, ds["psd_floor_acceleration"].values[:, k] * w2, label=f"s = {s:+g} m")
+    for axis in (left.xaxis, left.yaxis):  # matplotlib's labels, drawn without mathtext
+        axis.set_major_formatter(SuperscriptLogFormatter())
+        axis.set_minor_formatter(SuperscriptLogFormatter(labelOnlyBase=False))
     left.set_xlabel("frequency (Hz)")
     left.set_ylabel(f"{weighting}-weighted floor acceleration PSD ((m/s^2)^2/Hz)")
     left.legend(fontsize=8)
