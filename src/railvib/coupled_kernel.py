@@ -41,7 +41,17 @@ __all__ = ["coupled_points", "fused_kernel", "fused_points", "kernel"]
 
 _KERNEL: list[Any] = []
 _FUSED: list[Any] = []
-_B = 32  # points a batch of the fused kernel (structure of arrays)
+_B = 64  # points a batch of the fused kernel (structure of arrays)
+# cos and sin of the wheels' input phases: pi/2 in two parts (33 + 53 bits: n pi/2 exact for
+# |n| < 2^20), and the minimax kernels of fdlibm (k_sin.c, k_cos.c) on [-pi/4, pi/4]
+_TWO_OVER_PI = 6.36619772367581382433e-01
+_PIO2_1 = 1.57079632673412561417e00
+_PIO2_1T = 6.07710050650619224932e-11
+_SINCOS_MAX = 2.0**19 * np.pi  # |phase| above: the library's cos and sin
+_S1, _S2, _S3 = -1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04
+_S4, _S5, _S6 = 2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969099521155010221e-10
+_C1, _C2, _C3 = 4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05
+_C4, _C5, _C6 = -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11
 
 
 def kernel() -> Any:
@@ -55,7 +65,9 @@ def kernel() -> Any:
 def fused_kernel() -> Any:
     """The compiled fused kernel of :func:`fused_points`, or None where numba is not installed."""
     if not _FUSED:
-        jit = numba_jit(error_model="numpy")
+        # as the wave kernel's (railvib.track.compiled): divisions without a zero test, and
+        # a * b + c as one FMA (no reassociation), so that each stage is one vector loop
+        jit = numba_jit(error_model="numpy", fastmath={"contract"})
         _FUSED.append(None if jit is None else jit(_fused))
     return _FUSED[0]
 
@@ -426,9 +438,35 @@ def _fused(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch, 
             for b in range(nb):
                 ar[i * n + i, b] = ar[i * n + i, b] + 1.0
         for i in range(n):
+            large = False
             for b in range(nb):
                 phase = minus_two_pi * f[start + b] * delays[i]
-                xr[i, b], xi[i, b] = np.cos(phase), np.sin(phase)
+                xr[i, b] = phase
+                large = large or abs(phase) > _SINCOS_MAX
+            if large:  # beyond the reduction's range: the library's, point by point
+                for b in range(nb):
+                    phase = xr[i, b]
+                    xr[i, b], xi[i, b] = np.cos(phase), np.sin(phase)
+                continue
+            for b in range(nb):
+                # cos and sin as fdlibm's kernels after a Cody-Waite reduction by pi/2
+                phase = xr[i, b]
+                turns = np.floor(phase * _TWO_OVER_PI + 0.5)
+                y = (phase - turns * _PIO2_1) - turns * _PIO2_1T
+                z = y * y
+                z2 = z * z
+                sin_r = _S2 + z * (_S3 + z * _S4) + z * z2 * (_S5 + z * _S6)
+                sin_y = y + z * y * (_S1 + z * sin_r)
+                cos_r = z * (_C1 + z * (_C2 + z * _C3)) + z2 * z2 * (_C4 + z * (_C5 + z * _C6))
+                half = 0.5 * z
+                one = 1.0 - half
+                cos_y = one + (((1.0 - one) - half) + z * cos_r)
+                quadrant = turns - 4.0 * np.floor(turns * 0.25)
+                c = cos_y if quadrant == 0.0 else -sin_y if quadrant == 1.0 else sin_y
+                c = -cos_y if quadrant == 2.0 else c
+                sn = sin_y if quadrant == 0.0 else cos_y if quadrant == 1.0 else -cos_y
+                sn = -sin_y if quadrant == 2.0 else sn
+                xr[i, b], xi[i, b] = c, sn
         # elimination with partial pivoting: the largest pivot swapped up by selects
         for k in range(n):
             kk = k * n + k
