@@ -14,7 +14,8 @@ and no result is copied into place.
 
 One case's block (:meth:`railvib.coupling.CoupledSystem.frf_blocks`) goes further on
 :func:`fused_points`: the vehicle's condensation onto its wheels is executed per point
-too (in batches of points, a point a vector lane), from the integer tables of its minimum-degree elimination
+too (in batches of points, a point a vector lane), from the integer tables of its
+minimum-degree elimination
 (:attr:`railvib.vehicle.Vehicle.elimination_program`, any tree of bodies, a train's cars
 included), and the bodies are recovered by back-substitution through the elimination's
 multipliers, so neither ``S`` nor ``R_v`` is formed as an array; the receptance is scaled
