@@ -295,8 +295,11 @@ def _filon_table(
     new = np.concatenate([[True], np.diff(sorted_half) > _SAME_WIDTH * sorted_half[1:]])
     group[order] = np.cumsum(new) - 1
     width = sorted_half[new]  # (n_width,)
-    argument = width[:, None, None] * r[None, :, None]  # (n_width, n_obs, 1)
-    moments = _LEGENDRE_MOMENT * spherical_jn(np.arange(NODES.size), argument)
+    degree = np.arange(NODES.size)
+    argument = width[:, None, None] * np.abs(r)[None, :, None]  # (n_width, n_obs, 1)
+    # j_j(-x) = (-1)^j j_j(x) (DLMF 10.47.14): scipy < 1.15 gives NaN for x < 0, j >= 1
+    parity = np.where(r < 0.0, -1.0, 1.0)[None, :, None] ** degree
+    moments = _LEGENDRE_MOMENT * parity * spherical_jn(degree, argument)
     table = np.asarray(moments @ _LEGENDRE_INVERSE, dtype=np.complex128)
     table[:, r == 0.0, :] = _KRONROD
     return group, table
