@@ -39,6 +39,7 @@ from railvib.track.moving import (
     critical_speed,
     moving_load_receptance,
 )
+from railvib.track.moving_interp import interpolated_receptance
 from railvib.track.periodic import PeriodicTrack
 
 __all__ = [
@@ -72,6 +73,11 @@ _PROBE = 12
 #: kernel's default 1e-6, 0.15 at ``|n| = 5`` (the rule before the Filon one: 0.49, its far
 #: gaps' ``exp(i k r)`` refining more than its tolerance asked, at 2.2 times the cost)
 QUADRATURE_TOLERANCE = 3e-9
+
+#: interpolation tolerance of those receptances in the load frequency
+#: (:func:`~railvib.track.moving_interp.interpolated_receptance`, relative to the largest
+#: harmonic at each point): ten times the quadrature's
+INTERPOLATION_TOLERANCE = 3e-8
 
 
 @dataclass(frozen=True)
@@ -213,7 +219,9 @@ class HarmonicSystem:
         idx = np.arange(n_w)
         for m in range(h):
             flex[:, m * n_w + idx, m, idx] += 1.0 / self.contact_stiffness
-        system = np.einsum("fams,fmsi->fami", flex, self.stiffness).reshape(n_f, size, size)
+        # batched matrix products (BLAS) rather than einsum: (R + I / k_H) S per harmonic
+        system = np.matmul(flex.transpose(0, 2, 1, 3), self.stiffness)
+        system = system.transpose(0, 2, 1, 3).reshape(n_f, size, size)
         system[:, np.arange(size), np.arange(size)] += 1.0
         rhs = excitation.reshape(n_f, size, -1).astype(np.complex128)
         centre = h // 2
@@ -222,12 +230,12 @@ class HarmonicSystem:
             g = np.asarray(static_loads, dtype=float)
             rhs = rhs + np.einsum("fas,s->fa", flex[:, :, centre, :], g)[..., None]
         u_w = np.linalg.solve(system, rhs).reshape(n_f, h, n_w, -1)
-        force = -np.einsum("fmis,fmsk->fmik", self.stiffness, u_w)
+        force = -np.matmul(self.stiffness, u_w)
         if g is not None:
             force[:, centre] += g[None, :, None]
-        rail = np.einsum("fqjmi,fmik->fqjk", self.receptance, force)
-        vehicle = np.einsum("fmds,fmsk->fmdk", self.recovery, u_w)
-        return vehicle, force, rail
+        rail = np.matmul(rec.reshape(n_f, size, size), force.reshape(n_f, size, -1))
+        vehicle = np.matmul(self.recovery, u_w)
+        return vehicle, force, rail.reshape(force.shape)
 
 
 @dataclass(frozen=True, eq=False)
@@ -300,7 +308,7 @@ def load_receptances(
     freqs = f[:, None] + np.arange(-n, n + 1)[None, :] * passing
     mag = np.unique(np.round(np.abs(freqs), 9))
     r = _wheel_gaps(system)[0]
-    res = moving_load_receptance(
+    res = interpolated_receptance(
         system.track,
         mag,
         system.speed,
@@ -308,6 +316,7 @@ def load_receptances(
         r=r,
         tolerance=settings.tolerance,
         quadrature_tolerance=QUADRATURE_TOLERANCE,
+        interpolation_tolerance=INTERPOLATION_TOLERANCE,
     )
     return LoadReceptances(mag, r, np.asarray(res.amplitudes, dtype=np.complex128))
 

@@ -328,12 +328,28 @@ def _check_order(
 ) -> None:
     """Refuse an order that leaves out harmonics above `tolerance` of the largest one.
 
-    `amplitudes` holds :data:`_EXTRA` harmonics more on each side than `order`. The order
-    needed is the lowest whose left-out harmonics are within the tolerance, extrapolated
-    beyond those computed as a power law ``|A_n| ~ n^-p`` (the receptance over load
-    position has a kink in its third derivative at the sleepers, so ``p`` tends to 4).
+    `amplitudes` holds :data:`_EXTRA` harmonics more on each side than `order`
+    (:func:`check_harmonic_sizes` on their sizes).
     """
-    size = np.abs(amplitudes).max(axis=1)  # (n_freq, n_harm)
+    check_harmonic_sizes(f, v, np.abs(amplitudes).max(axis=1), order, tolerance)
+
+
+def check_harmonic_sizes(
+    f: NDArray[np.float64],
+    v: float,
+    size: NDArray[np.float64],
+    order: int,
+    tolerance: float,
+) -> None:
+    """Refuse an order that leaves out harmonics above `tolerance` of the largest one.
+
+    `size` is ``max_r |A_n(f, r)|`` (m/N, ``(n_freq, n_harm)``) of :data:`_EXTRA` harmonics
+    more on each side than `order`, at the frequencies `f` (Hz) and speed `v` (m/s). The
+    order needed is the lowest whose left-out harmonics are within the tolerance,
+    extrapolated beyond those computed as a power law ``|A_n| ~ n^-p`` (the receptance
+    over load position has a kink in its third derivative at the sleepers, so ``p`` tends
+    to 4).
+    """
     size = size / np.maximum(size.max(axis=1, keepdims=True), np.finfo(float).tiny)
     centre = size.shape[1] // 2
     # the largest harmonic of order |n| >= j, for each j
