@@ -27,10 +27,11 @@ from railvib.errors import CaseError
 from railvib.track.moving import (
     _EXTRA,
     _PANEL_TOLERANCE,
+    COMPILED_MIN_FREQUENCIES,
     MovingLoadResponse,
-    _check_order,
     _checked,
     _harmonics,
+    check_harmonic_sizes,
     compiled_available,
 )
 from railvib.track.periodic import PeriodicTrack
@@ -43,6 +44,12 @@ DEGREE = 16
 
 #: width of the starting intervals, Hz
 _START_WIDTH = 80.0
+
+#: intervals narrower than this fraction of the highest frequency are computed directly
+_NARROWEST = 1e-12
+
+#: frequencies whose harmonics' sizes are taken at once (the order check)
+_CHUNK = 2048
 
 #: Chebyshev-Lobatto points on [-1, 1], ascending
 _LOBATTO = -np.cos(np.pi * np.arange(DEGREE + 1) / DEGREE)
@@ -107,7 +114,7 @@ def interpolated_receptance(
             "moving.interpolation_tolerance", interpolation_tolerance, "in (0, 1e-3] (-)"
         )
     if compiled is None:
-        compiled = compiled_available()
+        compiled = f_arr.size >= COMPILED_MIN_FREQUENCIES and compiled_available()
     if quadrature_tolerance is None:
         quadrature_tolerance = _PANEL_TOLERANCE
     n_orders = np.arange(-order - _EXTRA, order + _EXTRA + 1)
@@ -117,43 +124,47 @@ def interpolated_receptance(
         return _harmonics(track, freqs, v, n_orders, r_arr, method)
 
     ascending = np.argsort(f_arr, kind="stable")
-    values, calls = _adaptive(direct, f_arr[ascending], float(interpolation_tolerance))
-    amplitudes = np.empty_like(values)
-    amplitudes[ascending] = values
-    _adaptive.calls = calls  # type: ignore[attr-defined]
+    amplitudes = _adaptive(direct, f_arr[ascending], float(interpolation_tolerance))
+    if np.any(ascending != np.arange(f_arr.size)):
+        amplitudes[ascending] = amplitudes.copy()
     if order >= 1:
-        _check_order(f_arr, v, amplitudes, order, tolerance)
+        check_harmonic_sizes(f_arr, v, _sizes(amplitudes), order, tolerance)
     kept = amplitudes[:, :, _EXTRA : amplitudes.shape[2] - _EXTRA]
     return MovingLoadResponse(
         f_arr, v, track.sleeper_spacing, r_arr, n_orders[_EXTRA:-_EXTRA], kept
     )
 
 
+def _sizes(amplitudes: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """``max_r |A_n|``, ``(n_freq, n_harm)``, in chunks that stay in cache."""
+    size = np.empty((amplitudes.shape[0], amplitudes.shape[2]))
+    for start in range(0, amplitudes.shape[0], _CHUNK):
+        part = amplitudes[start : start + _CHUNK]
+        size[start : start + _CHUNK] = np.abs(part).max(axis=1)
+    return size
+
+
 def _adaptive(
     direct: Callable[[NDArray[np.float64]], NDArray[np.complex128]],
     f: NDArray[np.float64],
     tol: float,
-) -> tuple[NDArray[np.complex128], int]:
-    """Values of `direct` at the sorted frequencies `f`, interpolated where that is accurate.
-
-    Returns the values ``(f.size, ...)`` and the number of frequencies computed directly.
-    """
+) -> NDArray[np.complex128]:
+    """Values of `direct` at the sorted frequencies `f`, interpolated where that is accurate."""
     lo, hi = float(f[0]), float(f[-1])
     edges = np.linspace(lo, hi, max(1, int(np.ceil((hi - lo) / _START_WIDTH))) + 1)
     pending = np.stack([edges[:-1], edges[1:]], axis=1)  # (n_interval, 2)
     out: NDArray[np.complex128] | None = None
-    calls = 0
     while pending.size:
         first = np.searchsorted(f, pending[:, 0], "left")
         last = np.searchsorted(f, pending[:, 1], "right")
-        few = last - first <= DEGREE  # no more asked for than a new interval's points
+        # no more asked for than a new interval's points (or no width left to halve)
+        few = (last - first <= DEGREE) | (np.diff(pending, axis=1)[:, 0] <= _NARROWEST * hi)
         centre, half = pending[~few].mean(axis=1), 0.5 * np.diff(pending[~few], axis=1)[:, 0]
         points = (centre[:, None] + half[:, None] * _LOBATTO).ravel()
         asked = np.concatenate([np.arange(a, b) for a, b in zip(first[few], last[few])] + [[]])
         asked = asked.astype(np.intp)
         batch, where = np.unique(np.concatenate([points, f[asked]]), return_inverse=True)
         values = direct(batch)
-        calls += batch.size
         if out is None:
             out = np.empty((f.size,) + values.shape[1:], dtype=np.complex128)
         out[asked] = values[where[points.size :]]
@@ -177,4 +188,4 @@ def _adaptive(
         )
         pending = pending[np.argsort(pending[:, 0])]
     assert out is not None
-    return out, calls
+    return out
