@@ -370,14 +370,13 @@ def harmonic_blocks(
         receptances = load_receptances(system, f, settings)
     amp = receptances.signed(freqs.ravel()).reshape(f.size, h, r.size, h)  # [k, m, r, n + N]
     phase = np.exp(1j * np.outer(orders, 2.0 * np.pi * x / track.sleeper_spacing))  # [n, i]
+    # every block R[q, m] with |q - m| <= N at once: gathered (n_f, n_block, n_w[j], n_w[i])
+    q, m = np.nonzero(np.abs(orders[:, None] - orders[None, :]) <= n)
+    k = q - m + n
+    blocks = amp[:, m[:, None, None], pair[None, :, :], k[:, None, None]]
+    blocks *= phase[k][None, :, None, :]
     rec = np.zeros((f.size, h, n_w, h, n_w), dtype=np.complex128)
-    for q in range(h):
-        for m in range(h):
-            k = q - m
-            if abs(k) > n:
-                continue
-            block = amp[:, m, :, k + n][:, pair]  # (n_f, n_w[j], n_w[i])
-            rec[:, q, :, m, :] = block * phase[k + n][None, None, :]
+    rec[:, q, :, m, :] = blocks.transpose(1, 0, 2, 3)  # the block axis leads there
     cond = system.vehicle.condensed_to_wheels(np.abs(freqs.ravel()))
     negative = (freqs.ravel() < 0.0)[:, None, None]
     stiffness = np.where(negative, np.conj(cond.stiffness), cond.stiffness)
