@@ -215,20 +215,24 @@ class HarmonicSystem:
         n_f, h, n_w = self.stiffness.shape[:3]
         size = h * n_w
         rec = self.receptance.reshape(n_f, size, h, n_w)
-        flex = rec.copy()
-        idx = np.arange(n_w)
-        for m in range(h):
-            flex[:, m * n_w + idx, m, idx] += 1.0 / self.contact_stiffness
-        # batched matrix products (BLAS) rather than einsum: (R + I / k_H) S per harmonic
-        system = np.matmul(flex.transpose(0, 2, 1, 3), self.stiffness)
-        system = system.transpose(0, 2, 1, 3).reshape(n_f, size, size)
+        k_h = self.contact_stiffness
+        # (R + I / k_H) S: R S per harmonic column block (batched BLAS products), then
+        # S / k_H on the diagonal blocks and the identity
+        product = np.matmul(rec.transpose(0, 2, 1, 3), self.stiffness)  # (n_f, H, size, n_w)
+        system = product.transpose(0, 2, 1, 3).reshape(n_f, size, size)  # a copy
+        diagonal = np.arange(h)
+        system.reshape(n_f, h, n_w, h, n_w)[:, diagonal, :, diagonal, :] += (
+            self.stiffness.transpose(1, 0, 2, 3) / k_h
+        )
         system[:, np.arange(size), np.arange(size)] += 1.0
         rhs = excitation.reshape(n_f, size, -1).astype(np.complex128)
         centre = h // 2
         g = None
         if static_loads is not None:
             g = np.asarray(static_loads, dtype=float)
-            rhs = rhs + np.einsum("fas,s->fa", flex[:, :, centre, :], g)[..., None]
+            lift = rec[:, :, centre, :] @ g  # (R + I / k_H)[:, 0] G
+            lift[:, centre * n_w : (centre + 1) * n_w] += g / k_h
+            rhs = rhs + lift[..., None]
         u_w = np.linalg.solve(system, rhs).reshape(n_f, h, n_w, -1)
         force = -np.matmul(self.stiffness, u_w)
         if g is not None:
