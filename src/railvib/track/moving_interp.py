@@ -11,8 +11,8 @@ frequency inside. An interval is accepted when the degree-``P/2`` interpolant on
 other point reproduces the computed values at the points it leaves out to within
 ``interpolation_tolerance`` of the largest harmonic there (a measured error of the coarser
 rule, which bounds the finer one's on an analytic function); otherwise it is halved. Where
-halving reaches intervals holding no more asked-for frequencies than a new interval's
-points, those frequencies are computed directly: near a tangency (the moving load's
+halving reaches intervals holding no more asked-for frequencies than the points of their
+two halves, those frequencies are computed directly: near a tangency (the moving load's
 resonances, ``A_n`` singular in ``Omega``) the answer is the direct integral.
 """
 
@@ -149,7 +149,13 @@ def _adaptive(
     f: NDArray[np.float64],
     tol: float,
 ) -> NDArray[np.complex128]:
-    """Values of `direct` at the sorted frequencies `f`, interpolated where that is accurate."""
+    """Values of `direct` at the sorted frequencies `f`, interpolated where that is accurate.
+
+    Each round computes, in one call of `direct`, the Chebyshev-Lobatto points of every
+    pending interval and the asked-for frequencies of the intervals too sparse to
+    interpolate; accepted intervals fill their frequencies from the interpolant, the others
+    are halved for the next round.
+    """
     lo, hi = float(f[0]), float(f[-1])
     edges = np.linspace(lo, hi, max(1, int(np.ceil((hi - lo) / _START_WIDTH))) + 1)
     pending = np.stack([edges[:-1], edges[1:]], axis=1)  # (n_interval, 2)
@@ -157,12 +163,14 @@ def _adaptive(
     while pending.size:
         first = np.searchsorted(f, pending[:, 0], "left")
         last = np.searchsorted(f, pending[:, 1], "right")
-        # no more asked for than a new interval's points (or no width left to halve)
-        few = (last - first <= DEGREE) | (np.diff(pending, axis=1)[:, 0] <= _NARROWEST * hi)
-        centre, half = pending[~few].mean(axis=1), 0.5 * np.diff(pending[~few], axis=1)[:, 0]
+        # no more asked for than the points of its two halves (or no width left to halve)
+        few = last - first <= 2 * (DEGREE + 1)
+        few |= pending[:, 1] - pending[:, 0] <= _NARROWEST * hi
+        ranges = zip(first[few], last[few], strict=True)
+        asked = np.concatenate([np.arange(a, b) for a, b in ranges] + [np.empty(0, np.intp)])
+        fit, first, last = pending[~few], first[~few], last[~few]
+        centre, half = fit.mean(axis=1), 0.5 * (fit[:, 1] - fit[:, 0])
         points = (centre[:, None] + half[:, None] * _LOBATTO).ravel()
-        asked = np.concatenate([np.arange(a, b) for a, b in zip(first[few], last[few])] + [[]])
-        asked = asked.astype(np.intp)
         batch, where = np.unique(np.concatenate([points, f[asked]]), return_inverse=True)
         values = direct(batch)
         if out is None:
@@ -172,20 +180,18 @@ def _adaptive(
         nodes = values[where[: points.size]].reshape(centre.size, DEGREE + 1, width)
         scale = np.maximum(np.abs(nodes).max(axis=2), np.finfo(float).tiny)
         check = np.einsum("oe,iec->ioc", _CHECK, nodes[:, ::2]) - nodes[:, 1::2]
-        error = (np.abs(check).max(axis=2) / scale[:, 1::2]).max(axis=1)
-        good = error <= tol
+        good = (np.abs(check).max(axis=2) / scale[:, 1::2]).max(axis=1) <= tol
         # real matrices on the real and imaginary parts side by side: one real product
         flat = out.reshape(f.size, -1).view(np.float64)
         for i in np.flatnonzero(good):
-            a, b = first[~few][i], last[~few][i]
-            t = (f[a:b] - centre[i]) / half[i]
-            matrix = _barycentric(_LOBATTO, np.clip(t, -1.0, 1.0))
+            a, b = first[i], last[i]
+            matrix = _barycentric(_LOBATTO, np.clip((f[a:b] - centre[i]) / half[i], -1.0, 1.0))
             np.matmul(matrix, nodes[i].view(np.float64), out=flat[a:b])
-        split = pending[~few][~good]
+        split = fit[~good]
         middle = split.mean(axis=1)
-        pending = np.concatenate(
+        halves = np.concatenate(
             [np.stack([split[:, 0], middle], axis=1), np.stack([middle, split[:, 1]], axis=1)]
         )
-        pending = pending[np.argsort(pending[:, 0])]
+        pending = halves[np.argsort(halves[:, 0], kind="stable")]
     assert out is not None
     return out

@@ -13,8 +13,7 @@ import pytest
 
 from railvib.errors import CaseError
 from railvib.pads import SpringDamper
-from railvib.track import BallastedTrack, PeriodicTrack, Rail
-from railvib.track import moving_interp
+from railvib.track import BallastedTrack, PeriodicTrack, Rail, moving_interp
 from railvib.track.moving import moving_load_receptance
 from railvib.track.moving_interp import interpolated_receptance
 
