@@ -279,9 +279,10 @@ class LoadReceptances:
         idx = np.minimum(np.searchsorted(self.f, mag), self.f.size - 1)
         if not np.array_equal(self.f[idx], mag):
             raise ValueError("load frequencies outside the table (a programming error)")
-        amp = self.amplitudes[idx]
-        negative = (freqs < 0.0)[:, None, None]
-        return np.asarray(np.where(negative, np.conj(amp[:, :, ::-1]), amp), dtype=np.complex128)
+        amp = np.asarray(self.amplitudes[idx], dtype=np.complex128)  # a copy
+        negative = freqs < 0.0
+        amp[negative] = np.conj(amp[negative][:, :, ::-1])
+        return amp
 
 
 def load_receptances(
@@ -382,9 +383,10 @@ def harmonic_blocks(
     rec = np.zeros((f.size, h, n_w, h, n_w), dtype=np.complex128)
     rec[:, q, :, m, :] = blocks.transpose(1, 0, 2, 3)  # the block axis leads there
     cond = system.vehicle.condensed_to_wheels(np.abs(freqs.ravel()))
-    negative = (freqs.ravel() < 0.0)[:, None, None]
-    stiffness = np.where(negative, np.conj(cond.stiffness), cond.stiffness)
-    recovery = np.where(negative, np.conj(cond.recovery), cond.recovery)
+    negative = freqs.ravel() < 0.0
+    stiffness, recovery = np.array(cond.stiffness), np.array(cond.recovery)
+    stiffness[negative] = np.conj(stiffness[negative])
+    recovery[negative] = np.conj(recovery[negative])
     n_dof = recovery.shape[1]
     return HarmonicSystem(
         f,
