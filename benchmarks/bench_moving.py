@@ -83,17 +83,17 @@ def _nodes(track, f, speed, order, r=(0.0,)) -> float:
 def _direct(system, f, settings) -> tuple[int, int]:
     """Load frequencies of `moving_frf` that took the direct integral, and all of them."""
     counted = []
-    original = moving_interp._harmonics
+    original = moving_interp.integrated_harmonics
 
     def counting(track, freqs, *args, **kwargs):
         counted.append(freqs.size)
         return original(track, freqs, *args, **kwargs)
 
-    moving_interp._harmonics = counting
+    moving_interp.integrated_harmonics = counting
     try:
         moving_frf(system, f, settings, check=False)
     finally:
-        moving_interp._harmonics = original
+        moving_interp.integrated_harmonics = original
     n = settings.harmonic_order
     passing = system.speed / system.track.sleeper_spacing
     loads = np.unique(np.round(np.abs(f[:, None] + np.arange(-n, n + 1) * passing), 9))

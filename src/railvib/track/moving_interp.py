@@ -30,9 +30,10 @@ from railvib.track.moving import (
     COMPILED_MIN_FREQUENCIES,
     MovingLoadResponse,
     _checked,
-    _harmonics,
     check_harmonic_sizes,
     compiled_available,
+    integrated_harmonics,
+    warn_unresolved,
 )
 from railvib.track.periodic import PeriodicTrack
 
@@ -120,11 +121,19 @@ def interpolated_receptance(
     n_orders = np.arange(-order - _EXTRA, order + _EXTRA + 1)
     method = (bool(compiled), float(quadrature_tolerance))
 
+    integrated: list[NDArray[np.float64]] = []
+    left: list[NDArray[np.float64]] = []
+
     def direct(freqs: NDArray[np.float64]) -> NDArray[np.complex128]:
-        return _harmonics(track, freqs, v, n_orders, r_arr, method)
+        values, error = integrated_harmonics(track, freqs, v, n_orders, r_arr, method)
+        integrated.append(freqs)
+        left.append(error)
+        return values
 
     ascending = np.argsort(f_arr, kind="stable")
     amplitudes = _adaptive(direct, f_arr[ascending], float(interpolation_tolerance))
+    # one warning for all the rounds' integrals
+    warn_unresolved(np.concatenate(integrated), np.concatenate(left), stacklevel=3)
     if np.any(ascending != np.arange(f_arr.size)):
         amplitudes[ascending] = amplitudes.copy()
     if order >= 1:

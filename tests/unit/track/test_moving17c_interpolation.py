@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from railvib.errors import CaseError
+from railvib.errors import CaseError, SolverWarning
 from railvib.pads import SpringDamper
 from railvib.track import BallastedTrack, PeriodicTrack, Rail, moving_interp
 from railvib.track.moving import moving_load_receptance
@@ -121,3 +121,14 @@ def test_interpolated_against_the_direct_integral_on_a_fine_grid(track):
     scale = np.abs(want).max(axis=(1, 2))
     error = np.abs(got.amplitudes[pick] - want).max(axis=(1, 2)) / scale
     assert error.max() <= 1e-6
+
+
+def test_an_unresolved_quadrature_warns_once_for_all_rounds():
+    # a support without loss: undamped waves travel with the load at every frequency and
+    # the quadrature cannot reach its tolerance (docs/moving-load.md); the interpolation's
+    # rounds integrate several times, the user is told once, as by the direct integral
+    track = PeriodicTrack(Rail(6.4e6, 60.0), SpringDamper(2.0e8, 0.0), 0.6)
+    f = np.arange(235.0, 245.0, 0.02)
+    with pytest.warns(SolverWarning, match="kept a quadrature error estimate") as record:
+        interpolated_receptance(track, f, 20.0, order=1, tolerance=0.9)
+    assert sum(issubclass(w.category, SolverWarning) for w in record) == 1
