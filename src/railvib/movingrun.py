@@ -53,8 +53,10 @@ MOVING_FILES = (
 )
 
 #: more moving-load frequencies ((2N+1) x grid points) than this and a run warns of its
-#: cost (some 2 ms of CPU each for a 4-wheel car, numba kernel: most of a minute at this count)
-MANY_LOAD_FREQUENCIES = 20_000
+#: cost: their table (interpolated in frequency, docs/moving-vehicle.md, Cost) holds
+#: ``(N + 2) x`` the wheel gaps' receptances at each, some 0.2 GB per 10^5 for a 4-wheel
+#: car, and the harmonic balance takes some 4 s of CPU per 10^5
+MANY_LOAD_FREQUENCIES = 200_000
 
 #: a band whose moving and stationary mean squares differ by less than this (dB) is one
 #: where the stationary model is enough (the spread of a PSD estimate from a few minutes
@@ -86,8 +88,9 @@ def _prepared(
                 "frequency",
                 f"{grid.f.size} frequencies",
                 f"x {2 * settings.harmonic_order + 1} harmonics = {loads} moving-load "
-                "frequencies, some 2 ms of CPU each for 4 wheels (docs/moving-vehicle.md, Cost): "
-                "a log grid of a few hundred points is usually enough",
+                "frequencies, some 0.2 GB of memory and 4 s of CPU per 10^5 for 4 wheels "
+                "(docs/moving-vehicle.md, Cost): a log grid of a few hundred points is usually "
+                "enough",
             ),
             stacklevel=2,
         )

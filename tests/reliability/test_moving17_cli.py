@@ -90,18 +90,19 @@ def test_moving_run_writes_lines_and_psds_apart(tmp_path, monkeypatch, capsys):
 
 
 def test_a_costly_grid_warns_before_computing(tmp_path):
-    # 3000 frequencies x 7 harmonics = 21 000 moving-load frequencies (minutes of CPU): a
+    # 30 000 frequencies x 7 harmonics = 210 000 moving-load frequencies (a table of some
+    # 0.5 GB): a
     # one-line PlausibilityWarning naming the field, before anything is computed; escalated
     # to an error (as -W error does) it leaves nothing behind
     case = case_from_dict(
         {
             "preset": "wang2017_metro",
             "mode": "moving",
-            "frequency": {"spacing": "log", "f_min": 5.0, "f_max": 200.0, "n": 3000},
+            "frequency": {"spacing": "log", "f_min": 5.0, "f_max": 200.0, "n": 30000},
         }
     )
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
-        with pytest.raises(PlausibilityWarning, match=r"^frequency = '3000 frequencies': x 7"):
+        with pytest.raises(PlausibilityWarning, match=r"^frequency = '30000 frequencies': x 7"):
             run_moving_to_folder(case, tmp_path / "out")
     assert not (tmp_path / "out").exists()

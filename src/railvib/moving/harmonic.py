@@ -39,6 +39,7 @@ from railvib.track.moving import (
     critical_speed,
     moving_load_receptance,
 )
+from railvib.track.moving_interp import interpolated_receptance
 from railvib.track.periodic import PeriodicTrack
 
 __all__ = [
@@ -72,6 +73,11 @@ _PROBE = 12
 #: kernel's default 1e-6, 0.15 at ``|n| = 5`` (the rule before the Filon one: 0.49, its far
 #: gaps' ``exp(i k r)`` refining more than its tolerance asked, at 2.2 times the cost)
 QUADRATURE_TOLERANCE = 3e-9
+
+#: interpolation tolerance of those receptances in the load frequency
+#: (:func:`~railvib.track.moving_interp.interpolated_receptance`, relative to the largest
+#: harmonic at each point): ten times the quadrature's
+INTERPOLATION_TOLERANCE = 3e-8
 
 
 @dataclass(frozen=True)
@@ -209,25 +215,31 @@ class HarmonicSystem:
         n_f, h, n_w = self.stiffness.shape[:3]
         size = h * n_w
         rec = self.receptance.reshape(n_f, size, h, n_w)
-        flex = rec.copy()
-        idx = np.arange(n_w)
-        for m in range(h):
-            flex[:, m * n_w + idx, m, idx] += 1.0 / self.contact_stiffness
-        system = np.einsum("fams,fmsi->fami", flex, self.stiffness).reshape(n_f, size, size)
+        k_h = self.contact_stiffness
+        # (R + I / k_H) S: R S per harmonic column block (batched BLAS products), then
+        # S / k_H on the diagonal blocks and the identity
+        product = np.matmul(rec.transpose(0, 2, 1, 3), self.stiffness)  # (n_f, H, size, n_w)
+        system = product.transpose(0, 2, 1, 3).reshape(n_f, size, size)  # a copy
+        diagonal = np.arange(h)
+        system.reshape(n_f, h, n_w, h, n_w)[:, diagonal, :, diagonal, :] += (
+            self.stiffness.transpose(1, 0, 2, 3) / k_h
+        )
         system[:, np.arange(size), np.arange(size)] += 1.0
         rhs = excitation.reshape(n_f, size, -1).astype(np.complex128)
         centre = h // 2
         g = None
         if static_loads is not None:
             g = np.asarray(static_loads, dtype=float)
-            rhs = rhs + np.einsum("fas,s->fa", flex[:, :, centre, :], g)[..., None]
+            lift = rec[:, :, centre, :] @ g  # (R + I / k_H)[:, 0] G
+            lift[:, centre * n_w : (centre + 1) * n_w] += g / k_h
+            rhs = rhs + lift[..., None]
         u_w = np.linalg.solve(system, rhs).reshape(n_f, h, n_w, -1)
-        force = -np.einsum("fmis,fmsk->fmik", self.stiffness, u_w)
+        force = -np.matmul(self.stiffness, u_w)
         if g is not None:
             force[:, centre] += g[None, :, None]
-        rail = np.einsum("fqjmi,fmik->fqjk", self.receptance, force)
-        vehicle = np.einsum("fmds,fmsk->fmdk", self.recovery, u_w)
-        return vehicle, force, rail
+        rail = np.matmul(rec.reshape(n_f, size, size), force.reshape(n_f, size, -1))
+        vehicle = np.matmul(self.recovery, u_w)
+        return vehicle, force, rail.reshape(force.shape)
 
 
 @dataclass(frozen=True, eq=False)
@@ -267,9 +279,10 @@ class LoadReceptances:
         idx = np.minimum(np.searchsorted(self.f, mag), self.f.size - 1)
         if not np.array_equal(self.f[idx], mag):
             raise ValueError("load frequencies outside the table (a programming error)")
-        amp = self.amplitudes[idx]
-        negative = (freqs < 0.0)[:, None, None]
-        return np.asarray(np.where(negative, np.conj(amp[:, :, ::-1]), amp), dtype=np.complex128)
+        amp = np.asarray(self.amplitudes[idx], dtype=np.complex128)  # a copy
+        negative = freqs < 0.0
+        amp[negative] = np.conj(amp[negative][:, :, ::-1])
+        return amp
 
 
 def load_receptances(
@@ -300,7 +313,7 @@ def load_receptances(
     freqs = f[:, None] + np.arange(-n, n + 1)[None, :] * passing
     mag = np.unique(np.round(np.abs(freqs), 9))
     r = _wheel_gaps(system)[0]
-    res = moving_load_receptance(
+    res = interpolated_receptance(
         system.track,
         mag,
         system.speed,
@@ -308,6 +321,7 @@ def load_receptances(
         r=r,
         tolerance=settings.tolerance,
         quadrature_tolerance=QUADRATURE_TOLERANCE,
+        interpolation_tolerance=INTERPOLATION_TOLERANCE,
     )
     return LoadReceptances(mag, r, np.asarray(res.amplitudes, dtype=np.complex128))
 
@@ -361,18 +375,18 @@ def harmonic_blocks(
         receptances = load_receptances(system, f, settings)
     amp = receptances.signed(freqs.ravel()).reshape(f.size, h, r.size, h)  # [k, m, r, n + N]
     phase = np.exp(1j * np.outer(orders, 2.0 * np.pi * x / track.sleeper_spacing))  # [n, i]
+    # every block R[q, m] with |q - m| <= N at once: gathered (n_f, n_block, n_w[j], n_w[i])
+    q, m = np.nonzero(np.abs(orders[:, None] - orders[None, :]) <= n)
+    k = q - m + n
+    blocks = amp[:, m[:, None, None], pair[None, :, :], k[:, None, None]]
+    blocks *= phase[k][None, :, None, :]
     rec = np.zeros((f.size, h, n_w, h, n_w), dtype=np.complex128)
-    for q in range(h):
-        for m in range(h):
-            k = q - m
-            if abs(k) > n:
-                continue
-            block = amp[:, m, :, k + n][:, pair]  # (n_f, n_w[j], n_w[i])
-            rec[:, q, :, m, :] = block * phase[k + n][None, None, :]
+    rec[:, q, :, m, :] = blocks.transpose(1, 0, 2, 3)  # the block axis leads there
     cond = system.vehicle.condensed_to_wheels(np.abs(freqs.ravel()))
-    negative = (freqs.ravel() < 0.0)[:, None, None]
-    stiffness = np.where(negative, np.conj(cond.stiffness), cond.stiffness)
-    recovery = np.where(negative, np.conj(cond.recovery), cond.recovery)
+    negative = freqs.ravel() < 0.0
+    stiffness, recovery = np.array(cond.stiffness), np.array(cond.recovery)
+    stiffness[negative] = np.conj(stiffness[negative])
+    recovery[negative] = np.conj(recovery[negative])
     n_dof = recovery.shape[1]
     return HarmonicSystem(
         f,

@@ -328,12 +328,28 @@ def _check_order(
 ) -> None:
     """Refuse an order that leaves out harmonics above `tolerance` of the largest one.
 
-    `amplitudes` holds :data:`_EXTRA` harmonics more on each side than `order`. The order
-    needed is the lowest whose left-out harmonics are within the tolerance, extrapolated
-    beyond those computed as a power law ``|A_n| ~ n^-p`` (the receptance over load
-    position has a kink in its third derivative at the sleepers, so ``p`` tends to 4).
+    `amplitudes` holds :data:`_EXTRA` harmonics more on each side than `order`
+    (:func:`check_harmonic_sizes` on their sizes).
     """
-    size = np.abs(amplitudes).max(axis=1)  # (n_freq, n_harm)
+    check_harmonic_sizes(f, v, np.abs(amplitudes).max(axis=1), order, tolerance)
+
+
+def check_harmonic_sizes(
+    f: NDArray[np.float64],
+    v: float,
+    size: NDArray[np.float64],
+    order: int,
+    tolerance: float,
+) -> None:
+    """Refuse an order that leaves out harmonics above `tolerance` of the largest one.
+
+    `size` is ``max_r |A_n(f, r)|`` (m/N, ``(n_freq, n_harm)``) of :data:`_EXTRA` harmonics
+    more on each side than `order`, at the frequencies `f` (Hz) and speed `v` (m/s). The
+    order needed is the lowest whose left-out harmonics are within the tolerance,
+    extrapolated beyond those computed as a power law ``|A_n| ~ n^-p`` (the receptance
+    over load position has a kink in its third derivative at the sleepers, so ``p`` tends
+    to 4).
+    """
     size = size / np.maximum(size.max(axis=1, keepdims=True), np.finfo(float).tiny)
     centre = size.shape[1] // 2
     # the largest harmonic of order |n| >= j, for each j
@@ -368,7 +384,48 @@ def _harmonics(
     r: NDArray[np.float64],
     method: tuple[bool, float],
 ) -> NDArray[np.complex128]:
-    """``A_n(Omega, r)`` by the adaptive wavenumber integral, m/N, ``(n_freq, n_obs, n_harm)``."""
+    """``A_n(Omega, r)`` by the adaptive wavenumber integral, m/N, ``(n_freq, n_obs, n_harm)``.
+
+    Warns (:func:`warn_unresolved`) where the quadrature could not reach its tolerance.
+    """
+    out, left = integrated_harmonics(track, f, v, orders, r, method)
+    warn_unresolved(f, left, stacklevel=4)
+    return out
+
+
+def integrated_harmonics(
+    track: PeriodicTrack,
+    f: NDArray[np.float64],
+    v: float,
+    orders: NDArray[np.int64],
+    r: NDArray[np.float64],
+    method: tuple[bool, float],
+) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+    """``A_n(Omega, r)`` and the quadrature error estimate each frequency kept.
+
+    Parameters
+    ----------
+    track : PeriodicTrack
+        Rigid-base or ballasted periodic track.
+    f : numpy.ndarray
+        Load frequencies, Hz, ``(n_freq,)``.
+    v : float
+        Load speed, m/s.
+    orders : numpy.ndarray
+        Harmonic orders ``n``, ``(n_harm,)``.
+    r : numpy.ndarray
+        Observation points ahead of the load, m, ``(n_obs,)``.
+    method : tuple
+        ``(compiled, quadrature_tolerance)`` (bool, dimensionless).
+
+    Returns
+    -------
+    amplitudes : numpy.ndarray
+        m/N, ``(n_freq, n_obs, n_harm)``.
+    left : numpy.ndarray
+        The error estimate left, relative to the largest harmonic (dimensionless),
+        ``(n_freq,)``.
+    """
     out = np.empty((f.size, r.size, orders.size), dtype=np.complex128)
     left = np.zeros(f.size)
     ascending = np.argsort(f, kind="stable")
@@ -377,19 +434,33 @@ def _harmonics(
         # the core of the panels reaches 4 bending wavenumbers at the batch's top frequency
         panels = _starting_panels(track, float(f[batch[-1]]), int(np.abs(orders).max()))
         out[batch], left[batch] = _integrate(track, f[batch], v, orders, r, panels, method)
+    return out, left
+
+
+def warn_unresolved(f: NDArray[np.float64], left: NDArray[np.float64], stacklevel: int) -> None:
+    """One SolverWarning naming the frequencies whose quadrature kept a large error.
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        Load frequencies integrated, Hz, ``(n_freq,)``.
+    left : numpy.ndarray
+        Their error estimates left, relative to the largest harmonic (dimensionless).
+    stacklevel : int
+        Passed to :func:`warnings.warn` (a count of frames).
+    """
     if np.any(left > _WARN_ERROR):
         bad = left > _WARN_ERROR
         warnings.warn(
-            f"{int(bad.sum())} moving-load frequencies (first {f[bad][0]:.6g} Hz) kept a "
+            f"{int(bad.sum())} moving-load frequencies (first {np.sort(f[bad])[0]:.6g} Hz) kept a "
             f"quadrature error estimate up to {left.max():.1e} of the largest harmonic: an "
             "undamped wave travels with the load there (at the split pinned-pinned peaks "
             "f_pp +- v/(2d) of an undamped rail, or anywhere on a support without loss) and "
             f"the response is that of a rail loss factor of {VANISHING_LOSS_FACTOR:g}. Set "
             "track.rail.loss_factor (e.g. 0.01) or damp the support, or move the grid point.",
             SolverWarning,
-            stacklevel=3,
+            stacklevel=stacklevel,
         )
-    return out
 
 
 def _integrate(
