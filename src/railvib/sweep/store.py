@@ -507,7 +507,15 @@ class ChunkStore:
             self._damaged(
                 self.chunk_path(chunk_id), f"chunk {chunk_id} of {data} is damaged ({what})"
             )
+            for name in self._dims:  # whatever is in their place (a folder) is written anew
+                _remove(data / name / self._chunk_key(chunk_id, name))
         return not bad
+
+    def _chunk_key(self, chunk_id: int, name: str) -> str:
+        """The name of chunk `chunk_id`'s Zarr chunk file in variable `name` (``0.0.3``)."""
+        where, _ = self._region(chunk_id, name)
+        chunks = self._arrays[name].metadata.chunks
+        return ".".join(str((s.start or 0) // c) for s, c in zip(where, chunks, strict=True))
 
     def missing(self) -> list[int]:
         """Chunk ids still to compute, in order."""
@@ -588,6 +596,10 @@ class ChunkStore:
             self._write_layout(example)
         elif data != self.work_path:
             os.replace(data, self.work_path)
+        for name in self.work_path.iterdir():  # what zarr was writing when a run was killed
+            if name.is_dir():
+                for part in name.glob("*.partial"):
+                    _remove(part)
         self._open(self.work_path, writable=True)
 
     def _open(self, path: Path, writable: bool = False) -> None:
@@ -642,13 +654,10 @@ class ChunkStore:
             shutil.rmtree(tmp, ignore_errors=True)
 
     def _encoding(self, ds: xr.Dataset) -> dict[str, dict[str, Any]]:
-        """One Zarr chunk per sweep chunk, compressed with :data:`COMPRESSORS`."""
+        """One Zarr chunk per sweep chunk (zarr's default compressor, Blosc-LZ4)."""
         block = dict(zip(self.layout.dims, self.layout.block, strict=True))
         return {
-            str(name): {
-                "chunks": tuple(block.get(str(d), v.sizes[d]) for d in v.dims),
-                "compressors": COMPRESSORS,
-            }
+            str(name): {"chunks": tuple(block.get(str(d), v.sizes[d]) for d in v.dims)}
             for name, v in ds.data_vars.items()
         }
 
@@ -718,7 +727,3 @@ class ChunkStore:
             os.replace(data, target)
         return xr.open_zarr(target, consolidated=True, chunks=None)
 
-
-#: the Zarr compressors of the results: none (their float64 values compress to 66 % with
-#: Blosc-LZ4, for 30 % more of the parent's writing time; docs/sweeps.md)
-COMPRESSORS: Any = None
