@@ -145,7 +145,8 @@ def test_damaged_chunk_is_named_and_computed_again(
         assert store.chunk_path(int(name[6:12])).stat().st_mtime_ns == kept[name]
     now = _region_files(out)
     rewritten = {k for k, t in now.items() if regions.get(k) != t}
-    assert rewritten and all(k.endswith("1") for k in rewritten), rewritten  # chunk 1's only
+    assert rewritten, "chunk 1 is written again"
+    assert all(k.endswith("1") for k in rewritten), rewritten  # chunk 1's files only
     xr.testing.assert_identical(ds, reference)  # the same function on the same chunk
 
 
@@ -338,6 +339,7 @@ def test_plot_of_a_folder_without_a_sweep_is_one_line(finished, kind, tmp_path, 
 
 
 @pytest.mark.slow  # ~1.1 s: whole commands with their files, kept out of the fast suite
+@pytest.mark.filterwarnings("default::railvib.errors.DamagedOutputWarning")
 def test_plot_of_a_store_with_missing_zarr_chunks_is_one_line_and_a_rerun_repairs_it(
     finished, sweep_file, tmp_path, capsys
 ):
@@ -351,9 +353,11 @@ def test_plot_of_a_store_with_missing_zarr_chunks_is_one_line_and_a_rerun_repair
     assert "peak has 14 of 42 values missing" in line  # one of 3 cases, 14 responses each
     assert "rerun the same" in line
     assert not plots.exists()
-    # the advice holds: the same sweep command rebuilds the store from its finished chunks
+    # the advice holds: the same sweep command finds the damaged chunk and computes it again
     assert main(["sweep", str(sweep_file), "-o", str(out)]) == 0
-    capsys.readouterr()
+    warned = [line for line in capsys.readouterr().err.splitlines() if "warning:" in line]
+    assert len(warned) == 1
+    assert "is damaged (peak); it is computed again" in warned[0]
     assert main(["sweep", "plot", str(out), "-v", "peak", "-o", str(plots)]) == 0
 
 

@@ -34,8 +34,6 @@ import tempfile
 import threading
 import warnings
 import zlib
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -88,8 +86,8 @@ class _Damaged(Exception):
 
 
 #: the sweep's own temporaries (``.<name>.<random>.part`` of :func:`railvib.io.atomic_path`
-#: and of the store's layout, :meth:`ChunkStore.write`), by sub-folder: the prefixes of their names, or
-#: ``("",)`` for a folder that holds nothing but railvib's files
+#: and of the store's layout, :meth:`ChunkStore.write`), by sub-folder: the prefixes of
+#: their names, or ``("",)`` for a folder that holds nothing but railvib's files
 _LEFTOVERS: dict[str, tuple[str, ...]] = {
     ".": ("manifest.json", "sweep.zarr", "sweep.nc", "summary.csv"),
     "chunks": ("",),
@@ -186,7 +184,13 @@ def _record_stamp(path: Path) -> str | None:
 
 def _crc(value: NDArray[Any]) -> int:
     """CRC-32 of an array's bytes in C order (a chunk's array, cases first)."""
-    return zlib.crc32(np.ascontiguousarray(value))
+    return zlib.crc32(np.ascontiguousarray(value).data)
+
+
+def _as_list(value: Any) -> list[Any]:
+    """A JSON list attribute (``_ARRAY_DIMENSIONS``) as a list."""
+    assert isinstance(value, list | tuple), value
+    return list(value)
 
 
 def _reason(exc: BaseException) -> str:
@@ -609,15 +613,14 @@ class ChunkStore:
 
         group = zarr.open_group(str(path), mode="r+" if writable else "r")
         arrays = dict(group.arrays())
-        coords = set()
+        dims = {
+            name: [str(d) for d in _as_list(a.attrs["_ARRAY_DIMENSIONS"])]
+            for name, a in arrays.items()
+        }
+        coords = {d for names in dims.values() for d in names}
         for arr in arrays.values():
             coords.update(str(arr.attrs.get("coordinates", "")).split())
-            coords.update(map(str, arr.attrs.get("_ARRAY_DIMENSIONS", [])))
-        self._dims = {
-            str(name): tuple(map(str, arr.attrs["_ARRAY_DIMENSIONS"]))
-            for name, arr in arrays.items()
-            if name not in coords
-        }
+        self._dims = {str(n): tuple(d) for n, d in dims.items() if n not in coords}
         self._arrays = {name: arrays[name].async_array for name in self._dims}
         self._sync = sync
         self._path = path
@@ -726,4 +729,3 @@ class ChunkStore:
             _remove(target)  # a store no record describes (an older railvib's)
             os.replace(data, target)
         return xr.open_zarr(target, consolidated=True, chunks=None)
-
