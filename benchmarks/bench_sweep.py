@@ -16,9 +16,9 @@ from ``/proc``), with the parent's peak resident memory during the run (sampled 
 20 ms) for the sweep's size and for a tenth of it (``--large``: 10^3 against 10^4 cases),
 so that its growth with the sweep shows, and the size of the output folder the run
 leaves (what it wrote: the store, the chunks' records, the manifest). Loading the sweep
-file (``sweep_from_dict``: the base case and every axis value validated, as ``railvib sweep`` does before it
-computes) is timed too, before each run; the goal's wall figure is the whole command's:
-the load plus the run.
+file (``sweep_from_dict``: the base case and every axis value validated, as ``railvib
+sweep`` does before it computes) is timed too, before each run; the goal's wall figure
+is the whole command's: the load plus the run.
 
 The one-by-one reference does the same work per case as the sweep, case by case in one
 process (one core): the case validated and built, solved alone
