@@ -167,23 +167,6 @@ def test_damaged_chunk_is_one_warning_line_on_the_command_line(finished, tmp_pat
     ]
 
 
-def test_a_deleted_store_is_computed_again_whole(finished, tmp_path, monkeypatch):
-    spec, done, reference = finished
-    out = _copy(done, tmp_path / "out")
-    _remove_tree(out / "sweep.zarr")  # the records describe a store that is gone
-    computed = []
-    real = runner_mod._compute
-    monkeypatch.setattr(runner_mod, "_compute", lambda s, cid: computed.append(cid) or real(s, cid))
-    with pytest.warns(DamagedOutputWarning, match="Zarr store of the 3 finished chunks .* is gone"):
-        ds = run_sweep(spec, out, workers=1, progress=False)
-    assert sorted(computed) == [0, 1, 2]
-    xr.testing.assert_identical(ds, reference)
-
-
-def _remove_tree(path):
-    subprocess.run(["rm", "-r", str(path)], check=True)
-
-
 # ------------------------------------------------------------------- damaged manifest
 
 
