@@ -14,10 +14,11 @@ included): a warm-up run, then ``--repeat`` runs (default 3), min and median of 
 time and of the CPU time of every process of the run (the parent and its workers, read
 from ``/proc``), with the parent's peak resident memory during the run (sampled every
 20 ms) for the sweep's size and for a tenth of it (``--large``: 10^3 against 10^4 cases),
-so that its growth with the sweep shows. Loading the sweep file (``sweep_from_dict``:
-the base case and every axis value validated, as ``railvib sweep`` does before it
-computes) is timed too, before each run; the goal's wall figure is the whole command's:
-the load plus the run.
+so that its growth with the sweep shows, and the size of the output folder the run
+leaves (what it wrote: the store, the chunks' records, the manifest). Loading the sweep
+file (``sweep_from_dict``: the base case and every axis value validated, as ``railvib
+sweep`` does before it computes) is timed too, before each run; the goal's wall figure
+is the whole command's: the load plus the run.
 
 The one-by-one reference does the same work per case as the sweep, case by case in one
 process (one core): the case validated and built, solved alone
@@ -188,12 +189,13 @@ class ProcessWatch:
 
 @dataclass
 class SweepRun:
-    """One timed sweep: wall s, CPU s of every process, the parent's peak RSS in MB."""
+    """One timed sweep: wall s, CPU s of every process, parent's peak RSS and bytes written, MB."""
 
     wall: float
     cpu: float
     parent_cpu: float
     rss_mb: float
+    written_mb: float
 
 
 def time_load(d: dict[str, Any]) -> tuple[SweepSpec, float, float]:
@@ -212,7 +214,8 @@ def time_sweep(spec: SweepSpec, workers: int) -> SweepRun:
             run_sweep(spec, out / "sweep", workers=workers, progress=False)
             wall, parent = time.perf_counter() - t0, time.process_time() - c0
         parent -= watch.own_cpu  # the polling is the benchmark's, not the sweep's
-        return SweepRun(wall, parent + watch.children_cpu, parent, watch.peak_rss_mb)
+        written = sum(p.stat().st_size for p in out.rglob("*") if p.is_file()) / 1e6
+        return SweepRun(wall, parent + watch.children_cpu, parent, watch.peak_rss_mb, written)
     finally:
         shutil.rmtree(out, ignore_errors=True)
 
@@ -331,11 +334,14 @@ def main() -> None:
         print(
             f"    CPU of all its processes, load included {_stats(cpus)} s (parent's run "
             f"{_stats([r.parent_cpu for r in timed])} s); parent peak RSS "
-            f"{max(r.rss_mb for r in timed):.0f} MB"
+            f"{max(r.rss_mb for r in timed):.0f} MB; output folder {timed[0].written_mb:.0f} MB"
         )
         if n_pads == 1000:  # the parent's memory against the sweep's size
             small = time_sweep(sweep_from_dict(sweep_dict(True, 100)), args.workers)
-            print(f"    parent peak RSS with 10^3 cases: {small.rss_mb:.0f} MB")
+            print(
+                f"    parent peak RSS with 10^3 cases: {small.rss_mb:.0f} MB (output folder "
+                f"{small.written_mb:.0f} MB)"
+            )
         print(
             f"  one by one, the same work per case (1 core): {same * 1e3:6.1f} ms CPU/case -> "
             f"{same * n:7.1f} s for {n} (from {min(args.sample, n)} cases); railvib.run + "

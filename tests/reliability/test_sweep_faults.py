@@ -80,41 +80,73 @@ def _copy(src, dst):
     return dst
 
 
-# ------------------------------------------------------------------- damaged chunk files
+# ------------------------------------------------------------------- damaged chunks
 
-
-@pytest.mark.parametrize(
-    "damage",
-    [
-        pytest.param(lambda p: p.write_bytes(p.read_bytes()[:1000]), id="truncated"),
-        pytest.param(lambda p: p.write_bytes(b""), id="empty"),
-        pytest.param(lambda p: p.write_bytes(b"not a zip file at all"), id="garbage"),
-        pytest.param(lambda p: (p.unlink(), p.mkdir()), id="a folder"),
-        pytest.param(
-            # one byte flipped inside an array: the zip reads, the member's CRC does not
-            lambda p: p.write_bytes(
-                (lambda b: b[:-400] + bytes([b[-400] ^ 0xFF]) + b[-399:])(p.read_bytes())
-            ),
-            id="bit flip",
+DAMAGE = [
+    pytest.param("truncated", lambda p: p.write_bytes(p.read_bytes()[: p.stat().st_size // 2])),
+    pytest.param("empty", lambda p: p.write_bytes(b"")),
+    pytest.param("garbage", lambda p: p.write_bytes(b"not a chunk at all")),
+    pytest.param("a folder", lambda p: (p.unlink(), p.mkdir())),
+    pytest.param("deleted", lambda p: p.unlink()),
+    pytest.param(
+        "bit flip",
+        # one byte flipped in the middle: the file reads, its values (or CRCs) are not as written
+        lambda p: p.write_bytes(
+            (lambda b: b[: len(b) // 2] + bytes([b[len(b) // 2] ^ 0x01]) + b[len(b) // 2 + 1 :])(
+                p.read_bytes()
+            )
         ),
-    ],
-)
-def test_damaged_chunk_is_named_and_computed_again(finished, damage, tmp_path, monkeypatch):
+    ),
+]
+
+
+def _region_files(out):
+    """The Zarr chunk files of the finished store, with their mtimes."""
+    zarr_dir = out / "sweep.zarr"
+    return {
+        str(p.relative_to(zarr_dir)): p.stat().st_mtime_ns
+        for p in zarr_dir.rglob("*")
+        if p.is_file() and not p.name.startswith(".")
+    }
+
+
+@pytest.mark.parametrize(("how", "damage"), DAMAGE, ids=[d.values[0] for d in DAMAGE])
+@pytest.mark.parametrize("part", ["record", "region"])
+def test_damaged_chunk_is_named_and_computed_again(
+    finished, part, how, damage, tmp_path, monkeypatch
+):
     spec, done, reference = finished
     out = _copy(done, tmp_path / "out")
-    (out / "sweep.zarr").rename(tmp_path / "old.zarr")  # the state of a sweep cut short
     store = ChunkStore(out, spec)
     kept = {p.name: p.stat().st_mtime_ns for p in store.chunk_dir.iterdir()}
-    damage(store.chunk_path(1))
+    regions = _region_files(out)
+    if part == "record":
+        target = store.chunk_path(1)
+        # a flipped bit may leave the record readable, with a CRC its region fails
+        message = r"chunk record .*chunk-000001\.done is damaged|chunk 1 of .* is damaged"
+        if how == "deleted":  # a missing record is a chunk not done: no warning
+            message = None
+    else:
+        # chunk 1 of the speed axis (chunk_size 1): its block of the per-frequency variable
+        target = out / "sweep.zarr" / "psd_acceleration" / "0.0.1"
+        message = r"chunk 1 of .*sweep\.zarr is damaged \((unreadable|psd_acceleration)"
+    damage(target)
     computed = []
     real = runner_mod._compute
     monkeypatch.setattr(runner_mod, "_compute", lambda s, cid: computed.append(cid) or real(s, cid))
-    with pytest.warns(DamagedOutputWarning, match=r"chunk-000001\.npz is damaged") as record:
+    if message is None:
         ds = run_sweep(spec, out, workers=1, progress=False)
-    assert len(record) == 1
+    else:
+        with pytest.warns(DamagedOutputWarning, match=message) as record:
+            ds = run_sweep(spec, out, workers=1, progress=False)
+        assert len(record) == 1
     assert computed == [1]  # only the damaged chunk
-    for name in ("chunk-000000.npz", "chunk-000002.npz"):
+    for name in ("chunk-000000.done", "chunk-000002.done"):
         assert store.chunk_path(int(name[6:12])).stat().st_mtime_ns == kept[name]
+    now = _region_files(out)
+    rewritten = {k for k, t in now.items() if regions.get(k) != t}
+    assert rewritten, "chunk 1 is written again"
+    assert all(k.endswith("1") for k in rewritten), rewritten  # chunk 1's files only
     xr.testing.assert_identical(ds, reference)  # the same function on the same chunk
 
 
@@ -122,7 +154,7 @@ def test_damaged_chunk_is_named_and_computed_again(finished, damage, tmp_path, m
 def test_damaged_chunk_is_one_warning_line_on_the_command_line(finished, tmp_path, capsys):
     spec, done, _ = finished
     out = _copy(done, tmp_path / "out")
-    (out / "chunks" / "chunk-000002.npz").write_bytes(b"")  # was: "aborted", exit 130
+    ChunkStore(out, spec).chunk_path(2).write_bytes(b"")  # was: "aborted", exit 130
     path = tmp_path / "s.toml"
     path.write_text(tomli_w.dumps(_tiny()))
     assert main(["sweep", str(path), "-o", str(out), "--no-progress", "-j", "1"]) == 0
@@ -130,8 +162,8 @@ def test_damaged_chunk_is_one_warning_line_on_the_command_line(finished, tmp_pat
     assert "Traceback" not in err
     warned = [line for line in err.splitlines() if line.startswith("warning:")]
     assert warned == [
-        f"warning: chunk file {out}/chunks/chunk-000002.npz is damaged (cut short or not a "
-        "chunk file); it is computed again"
+        f"warning: chunk record {out}/chunks/chunk-000002.done is damaged (cut short or not a "
+        "chunk record); it is computed again"
     ]
 
 
@@ -155,7 +187,7 @@ def test_damaged_manifest_is_rewritten_from_the_chunk_stamps(finished, text, why
     chunks = {p.name: p.stat().st_mtime_ns for p in (out / "chunks").iterdir()}
     with pytest.warns(DamagedOutputWarning, match=rf"manifest\.json is damaged \({why}") as rec:
         ds = run_sweep(spec, out, workers=1, progress=False)
-    assert "3 chunk files of this sweep kept" in str(rec[0].message)
+    assert "3 finished chunks of this sweep kept" in str(rec[0].message)
     assert json.loads(manifest.read_text()) == good
     assert {p.name: p.stat().st_mtime_ns for p in (out / "chunks").iterdir()} == chunks
     xr.testing.assert_identical(ds, reference)
@@ -171,7 +203,7 @@ def test_damaged_manifest_with_another_sweeps_chunks_says_damaged_not_changed(fi
         run_sweep(other, out, workers=1, progress=False)
     message = str(info.value)
     assert message.startswith(f"{out}/manifest.json is damaged (not valid JSON")
-    assert "3 of the 3 chunk files" in message
+    assert "3 of the 3 chunk records" in message
     assert "--overwrite" in message
     assert "changed" not in message  # was: every field "changed"
     assert _files(out) == before
@@ -194,7 +226,8 @@ def test_leftover_temporaries_of_a_killed_run_are_removed_and_nothing_else(finis
         out / ".manifest.json.abcdefgh.part",  # railvib.io.atomic_path's names
         out / ".sweep.nc.abcdefgh.part",
         out / ".summary.csv.abcdefgh.part",
-        out / "chunks" / ".chunk-000001.npz.abcdefgh.part",
+        out / "chunks" / ".chunk-000001.done.abcdefgh.part",
+        out / "chunks" / ".sweep.zarr.abcdefgh.part",  # a store's layout being written
         out / "plots" / ".sweep_peak_carbody_bounce.png.abcdefgh.part",
     ]
     theirs = [out / ".notes.part", out / "keep.part", out / "plots" / ".mine.part"]
@@ -213,7 +246,7 @@ def test_leftover_temporaries_of_a_killed_run_are_removed_and_nothing_else(finis
 def test_title_only_edit_of_a_partial_sweep_resumes_with_the_new_title(tmp_path, monkeypatch):
     out = tmp_path / "out"
     run_sweep(sweep_from_dict(_tiny()), out, workers=1, progress=False, assemble=False)
-    (out / "chunks" / "chunk-000002.npz").unlink()  # cut short: chunk 2 missing
+    (out / "chunks" / "chunk-000002.done").unlink()  # cut short: chunk 2 missing
     computed = []
     real = runner_mod._compute
     monkeypatch.setattr(runner_mod, "_compute", lambda s, cid: computed.append(cid) or real(s, cid))
@@ -289,6 +322,7 @@ def test_plot_of_a_folder_without_a_sweep_is_one_line(finished, kind, tmp_path, 
 
 
 @pytest.mark.slow  # ~1.1 s: whole commands with their files, kept out of the fast suite
+@pytest.mark.filterwarnings("default::railvib.errors.DamagedOutputWarning")
 def test_plot_of_a_store_with_missing_zarr_chunks_is_one_line_and_a_rerun_repairs_it(
     finished, sweep_file, tmp_path, capsys
 ):
@@ -302,9 +336,11 @@ def test_plot_of_a_store_with_missing_zarr_chunks_is_one_line_and_a_rerun_repair
     assert "peak has 14 of 42 values missing" in line  # one of 3 cases, 14 responses each
     assert "rerun the same" in line
     assert not plots.exists()
-    # the advice holds: the same sweep command rebuilds the store from its finished chunks
+    # the advice holds: the same sweep command finds the damaged chunk and computes it again
     assert main(["sweep", str(sweep_file), "-o", str(out)]) == 0
-    capsys.readouterr()
+    warned = [line for line in capsys.readouterr().err.splitlines() if "warning:" in line]
+    assert len(warned) == 1
+    assert "is damaged (peak); it is computed again" in warned[0]
     assert main(["sweep", "plot", str(out), "-v", "peak", "-o", str(plots)]) == 0
 
 
@@ -545,7 +581,7 @@ def test_sigkill_of_the_main_process_leaves_no_process(tmp_path):
     proc = _start(sweep_file, out)
     try:
         deadline = time.monotonic() + 60
-        while not list((out / "chunks").glob("chunk-*.npz")):  # workers are computing
+        while not list((out / "chunks").glob("chunk-*.done")):  # workers are computing
             assert proc.poll() is None, proc.stderr.read()
             assert time.monotonic() < deadline
             time.sleep(0.01)
@@ -566,10 +602,11 @@ def test_kill_during_the_zarr_write_leaves_nothing_after_the_next_run(tmp_path):
     sweep_file = tmp_path / "long.toml"
     sweep_file.write_text(tomli_w.dumps(LONG))
     out = tmp_path / "out"
+    work = out / "chunks" / "sweep.zarr"  # the store being filled, region by region
     proc = _start(sweep_file, out)
     try:
         deadline = time.monotonic() + 120
-        while not list(out.glob(".sweep.zarr.*.part")):
+        while not work.is_dir():
             assert proc.poll() is None, proc.stderr.read()
             assert time.monotonic() < deadline
             time.sleep(0.0005)
@@ -577,11 +614,13 @@ def test_kill_during_the_zarr_write_leaves_nothing_after_the_next_run(tmp_path):
     finally:
         proc.wait(timeout=30)
         proc.stderr.close()
-    assert list(out.glob(".sweep.zarr.*.part")), "the kill must come during the Zarr write"
+    assert work.is_dir(), "the kill must come during the Zarr writes"
+    assert not (out / "sweep.zarr").exists()  # never there half-written
     rerun = subprocess.run(_command(sweep_file, out), capture_output=True, text=True, timeout=120)
     assert rerun.returncode == 0, rerun.stderr
     assert "Traceback" not in rerun.stderr
-    assert not list(out.glob(".*.part"))
+    assert not list(out.rglob(".*.part"))
+    assert not work.exists()  # moved into place
     ds = xr.open_zarr(out / "sweep.zarr")
     assert ds.sizes["speed_kmh"] == 120
     assert np.isfinite(ds.peak.values).all()

@@ -2,9 +2,10 @@
 
 Layout of a sweep folder::
 
-    OUT/manifest.json            fingerprint, layout and the resolved sweep
-    OUT/chunks/chunk-000012.npz  one file per finished chunk, written atomically
-    OUT/sweep.zarr               the assembled dataset (when all chunks exist)
+    OUT/manifest.json             fingerprint, layout and the resolved sweep
+    OUT/chunks/sweep.zarr         the store being filled, one region per chunk
+    OUT/chunks/chunk-000012.done  a finished chunk's record, written after its region
+    OUT/sweep.zarr                the finished store (moved there when all chunks are done)
     OUT/sweep.nc, summary.csv    optional exports; OUT/plots/ the summary plots
 """
 

@@ -2,7 +2,8 @@
 
 Whatever the executor, the chunks are the same and computed by the same
 function (:func:`railvib.sweep.batch.compute_chunk`), so the results are
-identical bit for bit. Only this (client) process writes chunk files.
+identical bit for bit. Only this (client) process writes the store and the chunks'
+records.
 """
 
 from __future__ import annotations
@@ -256,7 +257,8 @@ def run_sweep(
     overwrite : bool
         Discard chunks of a different sweep in `out` instead of refusing.
     assemble : bool
-        Write ``sweep.zarr`` and return the dataset when all chunks are done.
+        Move the store into place as ``OUT/sweep.zarr`` and return the dataset when all
+        chunks are done (false: the chunks are written into ``OUT/chunks`` only).
     scheduler_timeout : float
         Time to wait for the Dask scheduler at address `scheduler` to answer (s)
         (:func:`connect_scheduler`), before anything is written.
@@ -285,10 +287,10 @@ def run_sweep(
         lay = store.layout
         sizes = {cid: _n(lay.chunk_shape(cid)) for cid in todo}
         done_before = lay.n_cases - sum(sizes.values())
-        # with `assemble`, each chunk goes into sweep.zarr as it arrives (overlapped with
-        # compute); the store in progress is removed if the run stops
+        # each chunk is written once, into the store in OUT/chunks, as it arrives
+        # (overlapped with compute); the store and the chunks' records stay if the run stops
+        store.prepare()
         with (
-            store.streaming(assemble),
             _progress(progress, lay.n_cases, done_before) as advance,
             # closed at once on any exception (Ctrl-C while a chunk is written): the pool
             # stops now, not when the traceback is collected at exit, half-started workers
@@ -300,7 +302,7 @@ def run_sweep(
                 advance(sizes[cid])
     if not assemble:
         return None
-    return store.finish_zarr()
+    return store.finish()
 
 
 def _results(

@@ -1,18 +1,25 @@
-"""The resumable chunk store of a sweep, and its Zarr store, written chunk by chunk.
+"""The resumable store of a sweep: its Zarr store, written chunk by chunk, and what is done.
 
 Layout of a sweep folder::
 
-    OUT/manifest.json          fingerprint, layout and the resolved sweep
-    OUT/chunks/chunk-000012.npz one file per finished chunk, written atomically
-    OUT/sweep.zarr             the assembled dataset (each chunk written into a temporary
-                               store as it arrives; moved into place when all exist)
+    OUT/manifest.json             fingerprint, layout and the resolved sweep
+    OUT/chunks/sweep.zarr         the Zarr store being filled, each sweep chunk's region
+                                  written once as it arrives
+    OUT/chunks/chunk-000012.done  a chunk's resume record: written (atomically) after its
+                                  region, with the fingerprint and a CRC-32 of each array
+    OUT/sweep.zarr                the finished store (moved into place when every chunk
+                                  is done)
     OUT/sweep.nc, OUT/summary.csv, OUT/plots/   optional exports
 
-Each chunk is written to a temporary file and moved into place with
-``os.replace``, so a chunk file exists completely or not at all, whatever
-moment the run is killed. The fingerprint (hash of the resolved sweep, the
-data files it reads and the railvib version) is stored in the manifest and in
-every chunk; a different sweep is refused, never mixed in.
+A chunk counts as done only when its record exists: the record is renamed into place
+(``os.replace``) after the chunk's region is written, so a run killed while it writes a
+region leaves that region without a record, and the next run computes it again and
+overwrites it. The store's layout (metadata and coordinates) is written to a temporary
+folder and renamed into place, so it is complete or absent. The fingerprint (hash of the
+resolved sweep, the data files it reads and the railvib version) is stored in the
+manifest and in every record; a different sweep is refused, never mixed in. A region
+whose values no longer match their record's CRC (a damaged or deleted Zarr chunk) is
+computed again.
 """
 
 from __future__ import annotations
@@ -26,9 +33,7 @@ import shutil
 import tempfile
 import threading
 import warnings
-import zipfile
-from collections.abc import Iterator
-from contextlib import contextmanager
+import zlib
 from pathlib import Path
 from typing import Any
 
@@ -66,19 +71,23 @@ __all__ = [
     "remove_leftovers",
 ]
 
-_CHUNK_RE = re.compile(r"^chunk-(\d{6,})\.npz$")
+_RECORD_RE = re.compile(r"^chunk-(\d{6,})\.done$")
+
+#: the Zarr store being filled, in the chunks folder (moved to ``OUT/sweep.zarr`` when done)
+WORK_NAME = "sweep.zarr"
 
 
 class SweepMismatchError(RailvibError):
     """The output folder holds chunks of a different sweep."""
 
 
-#: what reading a damaged chunk file or manifest raises
-_DAMAGED = (OSError, EOFError, ValueError, KeyError, zipfile.BadZipFile)
+class _Damaged(Exception):
+    """A chunk's record or region is damaged; the message says how, in a few words."""
+
 
 #: the sweep's own temporaries (``.<name>.<random>.part`` of :func:`railvib.io.atomic_path`
-#: and :meth:`ChunkStore.begin_zarr`), by sub-folder: the prefixes of their names, or
-#: ``("",)`` for a folder that holds nothing but railvib's files
+#: and of the store's layout, :meth:`ChunkStore.write`), by sub-folder: the prefixes of
+#: their names, or ``("",)`` for a folder that holds nothing but railvib's files
 _LEFTOVERS: dict[str, tuple[str, ...]] = {
     ".": ("manifest.json", "sweep.zarr", "sweep.nc", "summary.csv"),
     "chunks": ("",),
@@ -90,7 +99,7 @@ def remove_leftovers(root: str | Path) -> list[Path]:
     """Remove the temporary files a killed run left in sweep folder `root`.
 
     Only railvib's own temporary names (``.sweep.zarr.XXXX.part``,
-    ``.chunk-000003.npz.XXXX.part``, ...; :func:`railvib.io.is_temporary_name`) in the
+    ``.chunk-000003.done.XXXX.part``, ...; :func:`railvib.io.is_temporary_name`) in the
     folder, its ``chunks`` and its ``plots`` are touched, through
     :func:`railvib.io.remove_temporaries`.
 
@@ -111,14 +120,14 @@ def remove_leftovers(root: str | Path) -> list[Path]:
     return removed
 
 
-async def _gather(writes: list[Any]) -> None:
-    """Await the coroutines `writes` together (zarr writes of one chunk)."""
-    await asyncio.gather(*writes)
+async def _gather(calls: list[Any]) -> list[Any]:
+    """Await the coroutines `calls` together (zarr reads or writes of one chunk)."""
+    return list(await asyncio.gather(*calls))
 
 
 def _import_store_libraries() -> None:
     """Import what writing the Zarr store needs (zarr, and Dask where installed)."""
-    import zarr  # noqa: F401  (imported ahead of its use in ChunkStore._open_zarr)
+    import zarr  # noqa: F401  (imported ahead of its use in ChunkStore._open_work)
 
     try:
         import dask.array  # noqa: F401
@@ -149,28 +158,43 @@ def _read_manifest(path: Path) -> tuple[dict[str, Any], str | None]:
     return data, None
 
 
-def _read_chunk_stamp(path: Path) -> str:
-    """The fingerprint stamped in a chunk file, after reading every array (CRC-checked)."""
-    with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as z:  # closed if not a zip
-        for name in z.files:
-            z[name]  # noqa: B018  (reading checks the member's CRC and .npy header)
-        return str(z["fingerprint"])
-
-
-def _chunk_stamp(path: Path) -> str | None:
-    """The fingerprint of a chunk file; None when it is damaged."""
+def _read_record(path: Path) -> dict[str, Any]:
+    """A chunk's record: ``{"fingerprint": str, "crc32": {name: int}}``; `_Damaged` if not."""
     try:
-        return _read_chunk_stamp(path)
-    except _DAMAGED:
+        data = json.loads(path.read_bytes().decode("utf-8"))
+    except OSError as exc:
+        raise _Damaged(_reason(exc)) from None
+    except ValueError:  # not UTF-8, not JSON (cut short, empty, garbage)
+        raise _Damaged("cut short or not a chunk record") from None
+    crc = data.get("crc32") if isinstance(data, dict) else None
+    if not isinstance(data, dict) or not isinstance(data.get("fingerprint"), str):
+        raise _Damaged("no fingerprint")
+    if not isinstance(crc, dict) or not all(isinstance(v, int) for v in crc.values()):
+        raise _Damaged("no checksums")
+    return data
+
+
+def _record_stamp(path: Path) -> str | None:
+    """The fingerprint of a chunk's record; None when it is damaged."""
+    try:
+        return str(_read_record(path)["fingerprint"])
+    except _Damaged:
         return None
+
+
+def _crc(value: NDArray[Any]) -> int:
+    """CRC-32 of an array's bytes in C order (a chunk's array, cases first)."""
+    return zlib.crc32(np.ascontiguousarray(value).data)
+
+
+def _as_list(value: Any) -> list[Any]:
+    """A JSON list attribute (``_ARRAY_DIMENSIONS``) as a list."""
+    assert isinstance(value, list | tuple), value
+    return list(value)
 
 
 def _reason(exc: BaseException) -> str:
     """What is wrong with a damaged file, in a few words."""
-    if isinstance(exc, EOFError | zipfile.BadZipFile):
-        return "cut short or not a chunk file"
-    if isinstance(exc, KeyError):
-        return "no fingerprint"
     text = getattr(exc, "strerror", None) or str(exc)
     return " ".join(text.split())[:120] or type(exc).__name__
 
@@ -267,7 +291,7 @@ def _file_hash(path: str) -> str:
 
 
 class ChunkStore:
-    """Finished chunks of one sweep in folder `root`.
+    """The Zarr store of one sweep in folder `root`, and the record of its finished chunks.
 
     Parameters
     ----------
@@ -282,29 +306,32 @@ class ChunkStore:
         self.spec = spec
         self.layout = SweepLayout(spec)
         self.fingerprint = fingerprint(spec)
-        self._stream = False  # write() streams into the Zarr store (begin_zarr)
-        self._zarr: Any = None  # the Zarr group being filled, or None
+        self._path: Path | None = None  # the Zarr store open, or None
+        self._writable = False  # it is the store being filled (OUT/chunks/sweep.zarr)
         self._arrays: dict[str, Any] = {}  # its variables (zarr.AsyncArray), by name
+        self._dims: dict[str, tuple[str, ...]] = {}  # their dimensions, by name
         self._sync: Any = None  # zarr's runner of a coroutine on its I/O loop
-        self._zarr_dir: Path | None = None
-        self._dims: dict[str, tuple[str, ...]] = {}
-        self._streamed: set[int] = set()
 
     @property
     def chunk_dir(self) -> Path:
-        """Folder of the chunk files."""
+        """Folder of the store being filled and of the chunks' records."""
         return self.root / "chunks"
 
+    @property
+    def work_path(self) -> Path:
+        """The Zarr store being filled (``OUT/chunks/sweep.zarr``)."""
+        return self.chunk_dir / WORK_NAME
+
     def chunk_path(self, chunk_id: int) -> Path:
-        """File of chunk `chunk_id`."""
-        return self.chunk_dir / f"chunk-{chunk_id:06d}.npz"
+        """The record of chunk `chunk_id` (it exists once the chunk's region is written)."""
+        return self.chunk_dir / f"chunk-{chunk_id:06d}.done"
 
     def open(self, overwrite: bool = False) -> None:
         """Create the folder and manifest, or check that an existing one is this sweep.
 
         Leftovers of a killed run (the temporary files and folders railvib writes
         before a rename) are removed first. A damaged manifest is written again when
-        the chunk files, each stamped with the fingerprint, show that the folder is
+        the chunks' records, each stamped with the fingerprint, show that the folder is
         this sweep's (with a :class:`~railvib.errors.DamagedOutputWarning`); an edit
         that changes no result (the title) only updates the manifest.
 
@@ -317,7 +344,7 @@ class ChunkStore:
         ------
         SweepMismatchError
             The folder holds a different sweep (and `overwrite` is false), or its
-            manifest is damaged and its chunk files are not this sweep's.
+            manifest is damaged and its chunks' records are not this sweep's.
         """
         manifest = self.root / MANIFEST
         remove_leftovers(self.root)
@@ -341,13 +368,13 @@ class ChunkStore:
 
     def _repair_manifest(self, damage: str, overwrite: bool) -> None:
         """Rewrite a damaged manifest if the chunks are this sweep's; else refuse or clear."""
-        stamps = [_chunk_stamp(p) for p in self._chunk_files()]
+        stamps = [_record_stamp(p) for p in self._records()]
         foreign = [s for s in stamps if s is not None and s != self.fingerprint]
         where = self.root / MANIFEST
         if foreign and not overwrite:
             raise SweepMismatchError(
                 f"{where} is damaged ({damage}) and {len(foreign)} of the {len(stamps)} chunk "
-                f"files in {self.chunk_dir} belong to a different sweep; use another --output "
+                f"records in {self.chunk_dir} belong to a different sweep; use another --output "
                 "folder, or --overwrite to discard them"
             )
         if foreign:
@@ -356,14 +383,14 @@ class ChunkStore:
         else:
             where.unlink()
             done = "written again" + (
-                f" ({len(stamps)} chunk files of this sweep kept)" if stamps else ""
+                f" ({len(stamps)} finished chunks of this sweep kept)" if stamps else ""
             )
         warnings.warn(f"{where} is damaged ({damage}); {done}", DamagedOutputWarning, stacklevel=3)
 
-    def _chunk_files(self) -> list[Path]:
+    def _records(self) -> list[Path]:
         if not self.chunk_dir.is_dir():
             return []
-        return sorted(p for p in self.chunk_dir.iterdir() if _CHUNK_RE.match(p.name))
+        return sorted(p for p in self.chunk_dir.iterdir() if _RECORD_RE.match(p.name))
 
     def _clear(self) -> None:
         for name in (MANIFEST, ZARR_NAME, "chunks"):
@@ -374,7 +401,7 @@ class ChunkStore:
                 p.unlink()
 
     def _mismatch_message(self, old: dict[str, Any]) -> str:
-        n_done = len(self._chunk_files())
+        n_done = len(self._records())
         what = []
         old_spec = old.get("spec") or {}
         new_spec = self.spec.as_dict()
@@ -417,52 +444,104 @@ class ChunkStore:
             "spec": self.spec.as_dict(),
         }
 
-    def done(self) -> set[int]:
-        """Chunk ids already finished (each checked against the fingerprint).
+    def _data_path(self) -> Path | None:
+        """Where the finished chunks' regions are: the store being filled, or the finished one."""
+        for path in (self.work_path, self.root / ZARR_NAME):
+            if (path / ".zmetadata").is_file():
+                return path
+        return None
 
-        A damaged chunk file (cut short, empty, not a chunk) is removed with a
-        :class:`~railvib.errors.DamagedOutputWarning` naming it, so that it is computed
-        again.
+    def done(self) -> set[int]:
+        """Chunk ids already finished: each record checked, and its region against its CRCs.
+
+        A damaged record (cut short, empty, not a record), or a region whose values do
+        not match their record (a Zarr chunk deleted or damaged), is removed with a
+        :class:`~railvib.errors.DamagedOutputWarning` naming it, so that the chunk is
+        computed again (and its region overwritten).
 
         Raises
         ------
         SweepMismatchError
-            A chunk file belongs to another sweep.
+            A record belongs to another sweep.
         """
-        out: set[int] = set()
-        for p in self._chunk_files():
-            m = _CHUNK_RE.match(p.name)
-            assert m is not None  # _chunk_files matches the names
+        records: dict[int, dict[str, int]] = {}
+        for p in self._records():
+            m = _RECORD_RE.match(p.name)
+            assert m is not None  # _records matches the names
             cid = int(m.group(1))
             try:
-                fp = _read_chunk_stamp(p)
-            except _DAMAGED as exc:
-                warnings.warn(
-                    f"chunk file {p} is damaged ({_reason(exc)}); it is computed again",
-                    DamagedOutputWarning,
-                    stacklevel=2,
-                )
-                _remove(p)
+                record = _read_record(p)
+            except _Damaged as exc:
+                self._damaged(p, f"chunk record {p} is damaged ({exc})")
                 continue
-            if fp != self.fingerprint or cid >= self.layout.n_chunks:
+            if record["fingerprint"] != self.fingerprint or cid >= self.layout.n_chunks:
                 raise SweepMismatchError(
-                    f"chunk file {p} belongs to a different sweep; use another --output "
+                    f"chunk record {p} belongs to a different sweep; use another --output "
                     "folder, or --overwrite to discard it"
                 )
-            out.add(cid)
-        return out
+            records[cid] = record["crc32"]
+        if not records:
+            return set()
+        data = self._data_path()
+        if data is None:
+            warnings.warn(
+                f"the Zarr store of the {len(records)} finished chunks in {self.chunk_dir} is "
+                "gone; they are computed again",
+                DamagedOutputWarning,
+                stacklevel=2,
+            )
+            for cid in records:
+                self.chunk_path(cid).unlink()
+            return set()
+        return {cid for cid, crcs in records.items() if self._region_intact(data, cid, crcs)}
+
+    def _damaged(self, record: Path, message: str) -> None:
+        warnings.warn(f"{message}; it is computed again", DamagedOutputWarning, stacklevel=4)
+        _remove(record)
+
+    def _region_intact(self, data: Path, chunk_id: int, crcs: dict[str, int]) -> bool:
+        """Whether chunk `chunk_id`'s region in store `data` holds the values of its record."""
+        try:
+            arrays = self._read_region(data, chunk_id, list(crcs))
+            bad = [k.removeprefix("summary/") for k, v in arrays.items() if _crc(v) != crcs[k]]
+        except Exception as exc:  # noqa: BLE001  (whatever a damaged Zarr chunk makes zarr raise)
+            bad = [f"unreadable: {type(exc).__name__}"]
+        if bad:
+            what = ", ".join(bad[:3]) + (", ..." if len(bad) > 3 else "")
+            self._damaged(
+                self.chunk_path(chunk_id), f"chunk {chunk_id} of {data} is damaged ({what})"
+            )
+            for name in self._dims:  # whatever is in their place (a folder) is written anew
+                _remove(data / name / self._chunk_key(chunk_id, name))
+        return not bad
+
+    def _chunk_key(self, chunk_id: int, name: str) -> str:
+        """The name of chunk `chunk_id`'s Zarr chunk file in variable `name` (``0.0.3``)."""
+        where, _ = self._region(chunk_id, name)
+        chunks = self._arrays[name].metadata.chunks
+        return ".".join(str((s.start or 0) // c) for s, c in zip(where, chunks, strict=True))
 
     def missing(self) -> list[int]:
         """Chunk ids still to compute, in order."""
         done = self.done()
         return [i for i in range(self.layout.n_chunks) if i not in done]
 
-    def write(self, chunk_id: int, arrays: dict[str, NDArray[Any]]) -> Path:
-        """Write one finished chunk atomically (temporary file, then ``os.replace``).
+    def prepare(self) -> None:
+        """Import zarr (and Dask where installed) in a thread, while the workers start.
 
-        The rename makes the chunk all-or-nothing against the death of any process
-        (Ctrl-C, SIGKILL, a worker dying); there is no fsync, so after a power
-        failure the file system decides.
+        Their imports are most of the cost of the store's layout, written at the first
+        chunk.
+        """
+        threading.Thread(target=_import_store_libraries, name="railvib-zarr-import").start()
+
+    def write(self, chunk_id: int, arrays: dict[str, NDArray[Any]]) -> Path:
+        """Write one finished chunk: its region of the Zarr store, then its record.
+
+        The record (the fingerprint and a CRC-32 of each array) is renamed into place
+        after the region is written, so a chunk is done only once its region is
+        complete, against the death of any process (Ctrl-C, SIGKILL, a worker dying);
+        there is no fsync, so after a power failure the file system decides (and a
+        region that does not match its record is computed again).
 
         Parameters
         ----------
@@ -475,19 +554,19 @@ class ChunkStore:
         Returns
         -------
         pathlib.Path
-            The chunk file.
+            The chunk's record.
         """
+        if not self._writable:
+            self._open_work(arrays)
+        self._write_region(chunk_id, arrays)
+        record = {"fingerprint": self.fingerprint, "crc32": {k: _crc(v) for k, v in arrays.items()}}
         path = self.chunk_path(chunk_id)
-        payload = {k.replace("/", "__"): v for k, v in arrays.items()}
         with atomic_path(path) as tmp:
-            with open(tmp, "wb") as fh:
-                np.savez(fh, fingerprint=np.array(self.fingerprint), **payload)  # type: ignore[arg-type]
-        if self._stream:
-            self._write_region(chunk_id, arrays)
+            tmp.write_text(json.dumps(record), "utf-8")
         return path
 
     def read(self, chunk_id: int) -> dict[str, NDArray[Any]]:
-        """Read the arrays of one finished chunk.
+        """Read the arrays of one finished chunk back from the store.
 
         Parameters
         ----------
@@ -497,39 +576,66 @@ class ChunkStore:
         Returns
         -------
         dict of numpy.ndarray
-            The arrays given to :meth:`write`, by name.
+            The arrays given to :meth:`write`, by name, cases first.
         """
-        with np.load(self.chunk_path(chunk_id)) as z:
-            return {k.replace("__", "/"): z[k] for k in z.files if k != "fingerprint"}
+        data = self._data_path()
+        assert data is not None, "a finished chunk is in a store"
+        keys = list(_read_record(self.chunk_path(chunk_id))["crc32"])
+        return self._read_region(data, chunk_id, keys)
 
-    # -- streaming into the Zarr store ------------------------------------------------------
-    def begin_zarr(self) -> None:
-        """Stream the chunks into ``sweep.zarr`` from now on: each :meth:`write` adds its own.
+    # -- the Zarr store ----------------------------------------------------------------------
+    def _open_work(self, example: dict[str, NDArray[Any]]) -> None:
+        """Open the store being filled: the one a run left, the finished one, or a new one.
 
-        At the first chunk the store's metadata and coordinates are written to a
-        temporary folder (the variables as lazy placeholders: nothing of the size of the
-        sweep is held); then each chunk is compressed and written as it arrives, while
-        the workers compute the next, and the parent holds one chunk at a time.
-        :meth:`finish_zarr` adds the chunks finished by an earlier run and moves the
-        store into place. Zarr and Dask are imported now, in a thread of their own, while
-        the workers start (their imports are most of the layout's cost).
+        A store is reused only while records of it exist (else it may be an older
+        railvib's, or a run's killed before its first record); the finished
+        ``OUT/sweep.zarr`` moves back to ``OUT/chunks`` while chunks are written again,
+        so that it is never there half-written. A new store's layout is written, shaped
+        and typed after one chunk's `example` arrays, into a temporary folder renamed
+        into place.
         """
-        self._stream = True
-        threading.Thread(target=_import_store_libraries, name="railvib-zarr-import").start()
+        data = self._data_path() if self._records() else None
+        if data is None:
+            _remove(self.work_path)
+            self._write_layout(example)
+        elif data != self.work_path:
+            os.replace(data, self.work_path)
+        for name in self.work_path.iterdir():  # what zarr was writing when a run was killed
+            if name.is_dir():
+                for part in name.glob("*.partial"):
+                    _remove(part)
+        self._open(self.work_path, writable=True)
 
-    def _open_zarr(self, example: dict[str, NDArray[Any]]) -> None:
-        """Write the store's layout, shaped and typed after one chunk's `example` arrays.
-
-        With Dask (the optional ``sweep`` extra) the variables are lazy placeholders and
-        only the metadata is written; without it they are zero-stride views of one zero
-        (no memory), written as compressed zero chunks that the chunks then overwrite.
-        """
+    def _open(self, path: Path, writable: bool = False) -> None:
+        """Open the Zarr store `path` for the regions of its result variables."""
         import zarr
         from zarr.core.sync import sync  # what zarr's own synchronous API runs on
 
+        group = zarr.open_group(str(path), mode="r+" if writable else "r")
+        arrays = dict(group.arrays())
+        dims = {
+            name: [str(d) for d in _as_list(a.attrs["_ARRAY_DIMENSIONS"])]
+            for name, a in arrays.items()
+        }
+        coords = {d for names in dims.values() for d in names}
+        for arr in arrays.values():
+            coords.update(str(arr.attrs.get("coordinates", "")).split())
+        self._dims = {str(n): tuple(d) for n, d in dims.items() if n not in coords}
+        self._arrays = {name: arrays[name].async_array for name in self._dims}
+        self._sync = sync
+        self._path = path
+        self._writable = writable
+
+    def _write_layout(self, example: dict[str, NDArray[Any]]) -> None:
+        """Write the store's metadata and coordinates as ``OUT/chunks/sweep.zarr``, atomically.
+
+        With Dask (the optional ``sweep`` extra) the variables are lazy placeholders and
+        only the metadata is written; without it they are zero-stride views of one zero
+        (no memory), written as zero chunks that the chunks then overwrite.
+        """
         da: Any
         try:
-            import dask.array as da  # lazy placeholders of the layout (only when assembling)
+            import dask.array as da  # lazy placeholders of the layout
         except ImportError:
             da = None
         lay = self.layout
@@ -542,21 +648,31 @@ class ChunkStore:
 
         arrays = {name: placeholder(value) for name, value in example.items()}
         template = sweep_dataset(self.spec, arrays, self.fingerprint)
-        tmp = Path(tempfile.mkdtemp(prefix=".sweep.zarr.", suffix=".part", dir=self.root))
+        tmp = Path(tempfile.mkdtemp(prefix=f".{WORK_NAME}.", suffix=".part", dir=self.chunk_dir))
         options: dict[str, Any] = {"compute": da is None, "encoding": self._encoding(template)}
-        template.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True, **options)
-        self._zarr_dir = tmp
-        self._zarr = zarr.open_group(str(tmp / "store"), mode="r+")
-        self._dims = {str(name): tuple(map(str, v.dims)) for name, v in template.data_vars.items()}
-        self._arrays = {name: self._zarr[name].async_array for name in self._dims}
-        self._sync = sync
+        try:
+            template.to_zarr(tmp / "store", mode="w", zarr_format=2, consolidated=True, **options)
+            os.replace(tmp / "store", self.work_path)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
 
     def _encoding(self, ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+        """One Zarr chunk per sweep chunk (zarr's default compressor, Blosc-LZ4)."""
         block = dict(zip(self.layout.dims, self.layout.block, strict=True))
         return {
             str(name): {"chunks": tuple(block.get(str(d), v.sizes[d]) for d in v.dims)}
             for name, v in ds.data_vars.items()
         }
+
+    def _region(self, chunk_id: int, name: str) -> tuple[tuple[slice, ...], list[int]]:
+        """Where chunk `chunk_id` lies in variable `name`; the axes of its sweep-first block."""
+        lay = self.layout
+        sl = dict(zip(lay.dims, lay.chunk_slices(chunk_id), strict=True))
+        dims = self._dims[name]
+        n = len(lay.dims)
+        own = len(dims) - n  # the variable's own dims, then the sweep's
+        order = [n + i for i in range(own)] + list(range(n))
+        return tuple(sl.get(d, slice(None)) for d in dims), order
 
     def _write_region(self, chunk_id: int, arrays: dict[str, NDArray[Any]]) -> None:
         """Write one chunk's arrays into their block of every Zarr variable.
@@ -565,55 +681,33 @@ class ChunkStore:
         coroutines): written one by one, each small summary variable costs about a
         millisecond of zarr's synchronisation, two thirds of a chunk's writing.
         """
-        if self._zarr is None:
-            self._open_zarr(arrays)
-        lay = self.layout
-        sl = dict(zip(lay.dims, lay.chunk_slices(chunk_id), strict=True))
-        shape = lay.chunk_shape(chunk_id)
-        n = len(lay.dims)
+        shape = self.layout.chunk_shape(chunk_id)
         writes = []
         for key, value in arrays.items():
             name = key.removeprefix("summary/")
-            dims = self._dims[name]
+            where, order = self._region(chunk_id, name)
             block = value.reshape(shape + value.shape[1:])  # sweep dims first
-            own = dims[: len(dims) - n]  # the variable's own dims, then the sweep's
-            order = [n + i for i in range(len(own))] + list(range(n))
-            where = tuple(sl.get(d, slice(None)) for d in dims)
             writes.append(self._arrays[name].setitem(where, np.transpose(block, order)))
         self._sync(_gather(writes))
-        self._streamed.add(chunk_id)
 
-    @contextmanager
-    def streaming(self, enabled: bool = True) -> Iterator[None]:
-        """Stream the chunks written in the block into the Zarr store (:meth:`begin_zarr`).
+    def _read_region(self, data: Path, chunk_id: int, keys: list[str]) -> dict[str, NDArray[Any]]:
+        """Chunk `chunk_id`'s arrays `keys` read from store `data`, cases first (as written)."""
+        if self._path != data:
+            self._open(data)
+        n = len(self.layout.dims)
+        reads, backs = [], []
+        for key in keys:
+            where, order = self._region(chunk_id, key.removeprefix("summary/"))
+            reads.append(self._arrays[key.removeprefix("summary/")].getitem(where))
+            backs.append(np.argsort(order))
+        out = {}
+        for key, value, back in zip(keys, self._sync(_gather(reads)), backs, strict=True):
+            block = np.ascontiguousarray(np.transpose(value, back))  # sweep dims first
+            out[key] = block.reshape((-1, *block.shape[n:]))
+        return out
 
-        If the block is left by an exception (Ctrl-C, a worker dying), the store in
-        progress is removed; the chunk files stay for a rerun.
-
-        Parameters
-        ----------
-        enabled : bool
-            False: write the chunk files only.
-        """
-        if enabled:
-            self.begin_zarr()
-        try:
-            yield
-        except BaseException:
-            self.discard_zarr()
-            raise
-
-    def discard_zarr(self) -> None:
-        """Remove the store in progress (the run stopped; the chunk files are kept)."""
-        if self._zarr_dir is not None:
-            shutil.rmtree(self._zarr_dir, ignore_errors=True)
-        self._zarr = self._zarr_dir = None
-        self._arrays = {}
-        self._stream = False
-        self._streamed = set()
-
-    def finish_zarr(self) -> xr.Dataset:
-        """Add the chunks written before :meth:`begin_zarr`, then move the store into place.
+    def finish(self) -> xr.Dataset:
+        """Move the store into place once every chunk is done (its title brought up to date).
 
         Returns
         -------
@@ -621,16 +715,17 @@ class ChunkStore:
             The sweep dataset opened from ``OUT/sweep.zarr`` (read lazily: values are
             loaded on access, so the sweep need not fit in memory).
         """
-        assert self._stream, "begin_zarr first"
-        for cid in range(self.layout.n_chunks):
-            if cid not in self._streamed:
-                self._write_region(cid, self.read(cid))
-        assert self._zarr_dir is not None, "a sweep has at least one chunk"
+        import zarr
+
+        data = self._data_path()
+        assert data is not None, "a sweep has at least one chunk"
+        self._path, self._writable, self._arrays = None, False, {}
+        group = zarr.open_group(str(data), mode="r+")
+        if group.attrs.get("title") != self.spec.title:  # a retitled sweep (same results)
+            group.attrs["title"] = self.spec.title
+            zarr.consolidate_metadata(str(data), zarr_format=2)
         target = self.root / ZARR_NAME
-        try:
-            if target.exists():
-                shutil.rmtree(target)
-            os.replace(self._zarr_dir / "store", target)
-        finally:
-            self.discard_zarr()
+        if data != target:
+            _remove(target)  # a store no record describes (an older railvib's)
+            os.replace(data, target)
         return xr.open_zarr(target, consolidated=True, chunks=None)

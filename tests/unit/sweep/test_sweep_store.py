@@ -1,4 +1,4 @@
-"""Chunk store: atomic chunks, resume, refusal of a changed sweep, Zarr/netCDF/CSV."""
+"""Chunk store: chunks done once recorded, resume, refusal of a changed sweep, Zarr/netCDF/CSV."""
 
 import json
 
@@ -63,9 +63,8 @@ def test_resume_recomputes_only_missing_chunks(spec, tmp_path, monkeypatch):
     assert store.missing() == []
     kept = {p.name: p.stat().st_mtime_ns for p in store.chunk_dir.iterdir()}
     store.chunk_path(1).unlink()
-    (
-        store.chunk_dir / ".chunk-000001.npz.k2x_9qaz.part"
-    )  # mkstemp: 8 characters.write_bytes(b"half a chunk")
+    # what a run killed while it renamed the record leaves (mkstemp: 8 characters)
+    (store.chunk_dir / ".chunk-000001.done.k2x_9qaz.part").write_bytes(b"half a record")
     computed = []
     real = runner_mod._compute
 
@@ -77,7 +76,7 @@ def test_resume_recomputes_only_missing_chunks(spec, tmp_path, monkeypatch):
     again = run_sweep(spec, out, workers=1, progress=False)
     assert computed == [1]
     for p in store.chunk_dir.iterdir():
-        if p.name != "chunk-000001.npz":
+        if p.name != "chunk-000001.done":
             assert p.stat().st_mtime_ns == kept[p.name]
     assert not list(store.chunk_dir.glob(".*.part"))
     xr.testing.assert_identical(again, full)
@@ -107,7 +106,7 @@ def test_foreign_chunk_file_is_refused(spec, tmp_path):
     run_sweep(other, tmp_path / "a", workers=1, progress=False)
     store = ChunkStore(tmp_path / "b", spec)
     store.open()
-    (tmp_path / "a" / "chunks" / "chunk-000000.npz").rename(store.chunk_path(0))
+    (tmp_path / "a" / "chunks" / "chunk-000000.done").rename(store.chunk_path(0))
     with pytest.raises(SweepMismatchError, match="different sweep"):
         store.missing()
 
