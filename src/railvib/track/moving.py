@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from railvib.errors import CaseError, SolverWarning
+from railvib.errors import CaseError, NonFiniteResult, SolverWarning
 from railvib.track.moving_kernel import NODES, compiled_available, panel_rules
 from railvib.track.periodic import VANISHING_LOSS_FACTOR, PeriodicTrack
 from railvib.track.slab import SlabTrack
@@ -463,6 +463,37 @@ def warn_unresolved(f: NDArray[np.float64], left: NDArray[np.float64], stackleve
         )
 
 
+def _require_finite(
+    rule: NDArray[np.complex128], error: NDArray[np.float64], f_panel: NDArray[np.float64]
+) -> None:
+    """Refuse NaN or infinite panel rules before they are bisected.
+
+    A non-finite rule makes every panel's error test fail, so without this check each of
+    its panels would be halved at all :data:`_MAX_LEVELS` levels (``2^30``-fold growth of
+    the work and memory) instead of stopping.
+
+    Parameters
+    ----------
+    rule, error : ndarray
+        The panels' rules ``(n_panel, n_out)`` and their error estimates ``(n_panel,)``.
+    f_panel : ndarray
+        The load frequency of each panel, Hz.
+
+    Raises
+    ------
+    NonFiniteResult
+        Naming how many load frequencies are affected and the first of them.
+    """
+    bad = ~(np.isfinite(rule).all(axis=1) & np.isfinite(error))
+    if np.any(bad):
+        hit = np.unique(f_panel[bad])
+        raise NonFiniteResult(
+            f"moving-load receptance: the wavenumber integrand is NaN or infinite at "
+            f"{hit.size} load frequencies (first {hit[0]:.6g} Hz): the track's values are "
+            "beyond what the solver resolves in floating point"
+        )
+
+
 def _integrate(
     track: PeriodicTrack,
     f: NDArray[np.float64],
@@ -518,6 +549,7 @@ def _integrate(
             compiled=compiled,
         )
         rule = rule.reshape(mid.size, n_out)
+        _require_finite(rule, error, f[which])
         if scale is None:  # the largest harmonic per frequency, from the starting panels
             scale = np.maximum(np.abs(_sum_by(which, rule, n_f)).max(axis=1), np.finfo(float).tiny)
         relative = error / scale[which]
