@@ -3,9 +3,17 @@
 This package module loads no matplotlib; its submodules do.
 """
 
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
 from railvib.labels import rail_label
 
-__all__ = ["DEFAULT_SWEEP_RESPONSES", "OVERVIEW_GROUPS", "OVERVIEW_STEMS"]
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["DEFAULT_SWEEP_RESPONSES", "OVERVIEW_GROUPS", "OVERVIEW_STEMS", "save_run_figures"]
 
 #: responses drawn by :func:`railvib.plot.sweep.save_sweep_plots` when none is given
 DEFAULT_SWEEP_RESPONSES = ("carbody.bounce", "wheelset1.bounce", rail_label(1))
@@ -28,3 +36,29 @@ OVERVIEW_STEMS = (
     "irregularity_psd",
     "pad_stiffness",
 )
+
+
+def save_run_figures(ds: xr.Dataset, outdir: str | Path) -> list[Path]:
+    """Write every figure of ``railvib run``: the overview, then the criteria figures.
+
+    :func:`railvib.plot.psd.save_overview` and
+    :func:`railvib.plot.criteria.save_criteria_plots`, loading matplotlib on the call (so
+    that ``railvib run`` can draw them in a second process,
+    :meth:`railvib.io.StagedFolder.background`, while it writes its other files).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result dataset of :func:`railvib.run`.
+    outdir : str or pathlib.Path
+        Folder for the PNG files.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, in that order.
+    """
+    from railvib.plot.criteria import save_criteria_plots  # matplotlib: when drawing
+    from railvib.plot.psd import save_overview
+
+    return [*save_overview(ds, outdir), *save_criteria_plots(ds, outdir)]
