@@ -18,7 +18,7 @@ from railvib.case.schema import CriteriaSection
 from railvib.coupling import CoupledSystem
 from railvib.errors import CaseError, RailvibDeprecationWarning
 from railvib.grid import FrequencyGrid, trapezoid
-from railvib.io import Background, railvib_version, staged_folder, write_text
+from railvib.io import railvib_version, staged_folder, write_text
 from railvib.outputs import (
     DEFAULT_OUTPUTS,
     LOSS_OF_CONTACT_NOTE,
@@ -43,7 +43,7 @@ from railvib.outputs.supports import (
     support_force_data,
 )
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
-from railvib.plot import OVERVIEW_STEMS, save_run_figures
+from railvib.plot import OVERVIEW_STEMS, RunFigures, save_run_figures, start_run_figures
 from railvib.response import FRF
 from railvib.results.dataset import (
     assemble,
@@ -623,7 +623,7 @@ def run_to_folder(
         else:
             ds = result = run_system(system, grid, spectrum, **options)
             # drawn in a second process while results.nc and the tables are written
-            figures = stage.background(save_run_figures, ds, stage.path) if plots else None
+            figures = start_run_figures(stage, ds) if plots else None
             save_netcdf(ds, nc)
         with ds:
             files, table, header, footer = _write_run(case, ds, stage.path, plots, figures)
@@ -640,11 +640,11 @@ _PLOTTED = ("psd_acceleration", "psd_force", "psd_floor_acceleration")
 
 
 def _write_run(
-    case: Case, ds: xr.Dataset, folder: Path, plots: bool, figures: Background | None = None
+    case: Case, ds: xr.Dataset, folder: Path, plots: bool, figures: RunFigures | None = None
 ) -> tuple[list[Path], pd.DataFrame, list[str], list[str]]:
     """The files of :func:`run_to_folder` besides ``results.nc``, its table and summary lines.
 
-    `figures`: the figures already being drawn (:func:`railvib.plot.save_run_figures`),
+    `figures`: the figures already being drawn (:func:`railvib.plot.start_run_figures`),
     else drawn here with `plots`.
     """
     table = summary_table(summary(ds, bands=case.output.rms_bands))
