@@ -77,7 +77,7 @@ def defer_dask_probe() -> bool:
     if not all(map(callable, probes)) or probes[1] is not locks.get_dask_scheduler:
         return False
     cache["dask"] = _DeferredDask()
-    utils.is_dask_collection = _is_dask_collection
+    utils.is_dask_collection = _is_dask_collection  # type: ignore[assignment]
     writers.get_dask_scheduler = locks.get_dask_scheduler = _scheduler(locks.get_dask_scheduler)
     return True
 
