@@ -156,10 +156,8 @@ def _stages(cwd, repeat):
         ).stdout
         rows.append(json.loads(text.strip().splitlines()[-1]))
     own, kids = (statistics.median(r[i] for r in rows) for i in (0, 1))
-    print(
-        f"normal run (median of {repeat}): CPU {own:.2f} s in the run's process, {kids:.2f} s in its"
-    )
-    print("  figure processes (0 where the figures are drawn in the run's process)")
+    print(f"normal run (median of {repeat}): CPU {own:.2f} s in the run's process,")
+    print(f"  {kids:.2f} s in its figure processes (0 where it draws them itself)")
 
 
 def _cost(cwd):
