@@ -82,8 +82,9 @@ def test_without_a_fork_the_work_runs_here_when_asked(monkeypatch):
 
 
 def test_no_fork_beside_another_thread_or_when_switched_off(monkeypatch):
-    monkeypatch.delenv(rio.BACKGROUND_ENV, raising=False)
+    monkeypatch.setenv(rio.BACKGROUND_ENV, "1")
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1})
+    assert rio._can_fork() == (threading.active_count() == 1)
     stop = threading.Event()
     thread = threading.Thread(target=stop.wait)
     thread.start()
@@ -92,11 +93,24 @@ def test_no_fork_beside_another_thread_or_when_switched_off(monkeypatch):
     finally:
         stop.set()
         thread.join()
+    monkeypatch.setattr(threading, "active_count", lambda: 1)
+    assert rio._can_fork()
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
     assert not rio._can_fork()  # one CPU: nothing to gain
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1})
     monkeypatch.setenv(rio.BACKGROUND_ENV, "0")
     assert not rio._can_fork()
+
+
+@pytest.mark.parametrize(("load", "forks"), [(0.3, True), (1.5, True), (1.6, False), (9.0, False)])
+def test_unless_asked_a_child_is_forked_only_while_a_cpu_is_idle(monkeypatch, load, forks):
+    monkeypatch.delenv(rio.BACKGROUND_ENV, raising=False)
+    monkeypatch.setattr(threading, "active_count", lambda: 1)
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1})
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    assert rio._can_fork() is forks  # 2 CPUs: a fork at a load of 1.5 or less
+    monkeypatch.setenv(rio.BACKGROUND_ENV, "1")
+    assert rio._can_fork()  # asked for: whatever the load
 
 
 def test_cancel_stops_the_child(forking):
