@@ -1,6 +1,6 @@
 """Benchmark: how long a new user waits. ``import railvib``, ``railvib --help``, ``railvib run``.
 
-Run: ``python3 benchmarks/bench_startup.py [--repeat N] [--strict] [--cost]``.
+Run: ``python3 benchmarks/bench_startup.py [--repeat N] [--strict] [--cost] [--stages]``.
 
 Each figure is the wall time of a fresh Python process (what a user waits for), after one
 warm-up run (so the OS file cache is warm, as on a second try), as min and median of
@@ -14,6 +14,12 @@ warm-up run (so the OS file cache is warm, as on a second try), as min and media
 
 For information (no goal): ``import railvib`` followed by the first use of the facade
 (``railvib.run``), which loads the numerical stack; and ``railvib run --no-plots``.
+
+``--stages`` also prints where the time of ``railvib run`` goes: each stage of the run
+(imports, compute, results.nc, each CSV, each PNG) timed in one process with the figures
+drawn in it (``RAILVIB_BACKGROUND=0``, so that each stage is timed alone), min of
+`--repeat` fresh processes, wall and CPU; then the CPU of the run's own process and of
+its figure processes in the normal run (the figures drawn beside the writes).
 
 ``--cost`` also measures the cost per frequency of ``railvib run`` (peak memory and wall
 time, from two grid sizes so fixed costs cancel), the figures behind
@@ -64,6 +70,96 @@ def measure(argv, cwd, repeat, before=None):
     return min(times), statistics.median(times)
 
 
+#: one ``railvib run`` (through the CLI's main) with each stage timed; prints JSON rows
+STAGES = r"""
+import json, os, sys, time
+rows = []
+def now():
+    return time.perf_counter(), time.process_time()
+def mark(name, t):
+    w, c = now()
+    rows.append([name, w - t[0], c - t[1]])
+t = now()
+import railvib.cli.main
+import railvib.cli.run
+mark("import: the CLI and the run command (numpy, pandas, xarray, scipy, railvib)", t)
+t = now()
+import railvib.plot.criteria, railvib.plot.psd
+mark("import: matplotlib and railvib.plot", t)
+import railvib.solve as solve
+def timed(module, name, label):
+    inner = getattr(module, name)
+    def call(*args, **kwargs):
+        t = now()
+        out = inner(*args, **kwargs)
+        mark(label(args), t)
+        return out
+    setattr(module, name, call)
+base = lambda args: os.path.basename(str(args[1]))
+timed(solve, "load_case", lambda a: "load_case")
+timed(solve, "run_system", lambda a: "compute: run_system")
+timed(solve, "save_netcdf", lambda a: "write results.nc")
+timed(solve, "save_csv", lambda a: "write " + base(a))
+timed(solve, "write_text", lambda a: "write " + os.path.basename(str(a[0])))
+timed(solve, "summary", lambda a: "summary statistics")
+for module in (railvib.plot.psd, railvib.plot.criteria):
+    timed(module, "save_figure", lambda a: "figure " + base(a))
+t = now()
+code = railvib.cli.main.main(["run", sys.argv[1], "-o", sys.argv[2]])
+mark("the run command in all", t)
+print(json.dumps(rows))
+"""
+
+#: the normal run: CPU of the process and of its children (the figure processes)
+FORKED = r"""
+import json, resource, sys, time
+from railvib.cli.main import main
+main(["run", sys.argv[1], "-o", sys.argv[2]])
+own = resource.getrusage(resource.RUSAGE_SELF)
+kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(json.dumps([own.ru_utime + own.ru_stime, kids.ru_utime + kids.ru_stime]))
+"""
+
+
+def _stages(cwd, repeat):
+    """Print the stages of ``railvib run`` (min over `repeat` fresh processes)."""
+    out = Path(cwd) / "stages"
+    best = {}
+    for k in range(repeat + 1):
+        shutil.rmtree(out, ignore_errors=True)
+        text = subprocess.run(
+            [sys.executable, "-c", STAGES, "case.toml", str(out)],
+            cwd=cwd,
+            env={**ENV, "RAILVIB_BACKGROUND": "0"},
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
+        for name, wall, cpu in json.loads(text.strip().splitlines()[-1]):
+            if k:  # after a warm-up
+                old = best.get(name, (float("inf"), float("inf")))
+                best[name] = (min(old[0], wall), min(old[1], cpu))
+    print(f"stages of railvib run, figures drawn in its process (min of {repeat}):")
+    print(f"  {'stage':72s} {'wall':>8s} {'CPU':>8s}")
+    for name, (wall, cpu) in best.items():
+        print(f"  {name:72s} {wall * 1e3:6.0f}ms {cpu * 1e3:6.0f}ms")
+    rows = []
+    for _ in range(repeat):
+        shutil.rmtree(out, ignore_errors=True)
+        text = subprocess.run(
+            [sys.executable, "-c", FORKED, "case.toml", str(out)],
+            cwd=cwd,
+            env=ENV,
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
+        rows.append(json.loads(text.strip().splitlines()[-1]))
+    own, kids = (statistics.median(r[i] for r in rows) for i in (0, 1))
+    print(f"normal run (median of {repeat}): CPU {own:.2f} s in the run's process,")
+    print(f"  {kids:.2f} s in its figure processes (0 where it draws them itself)")
+
+
 def _cost(cwd):
     """Peak memory (B) and wall time (s) per frequency of ``railvib run`` (two grid sizes)."""
     probe = (
@@ -97,6 +193,7 @@ def main():
     parser.add_argument("--repeat", type=int, default=7, help="timed runs per figure")
     parser.add_argument("--strict", action="store_true", help="exit 1 if a goal is missed")
     parser.add_argument("--cost", action="store_true", help="also the cost per frequency")
+    parser.add_argument("--stages", action="store_true", help="also the stages of railvib run")
     args = parser.parse_args()
     py = sys.executable
     work = Path(tempfile.mkdtemp(prefix="railvib-bench-"))
@@ -154,6 +251,8 @@ def main():
             if name == "railvib run template":
                 written = sorted(p.name for p in out.iterdir())
         print(f"(railvib run template wrote {len(written)} files: {', '.join(written)})")
+        if args.stages:
+            _stages(work, args.repeat)
         if args.cost:
             per_byte, per_s = _cost(work)
             print(f"cost per frequency: {per_byte:,.0f} B peak memory, {per_s * 1e6:.1f} us wall")

@@ -43,7 +43,7 @@ from railvib.outputs.supports import (
     support_force_data,
 )
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
-from railvib.plot import OVERVIEW_STEMS
+from railvib.plot import OVERVIEW_STEMS, RunFigures, save_run_figures, start_run_figures
 from railvib.response import FRF
 from railvib.results.dataset import (
     assemble,
@@ -619,11 +619,14 @@ def run_to_folder(
         if grid.f.size > STREAM_FREQUENCIES:  # written block by block, then read from the file
             result = stream_to_netcdf(system, grid, spectrum, nc, **options)
             ds = open_netcdf(nc, drop=("frf_displacement", "frf_force"))
+            figures = None
         else:
             ds = result = run_system(system, grid, spectrum, **options)
+            # drawn in a second process while results.nc and the tables are written
+            figures = start_run_figures(stage, ds) if plots else None
             save_netcdf(ds, nc)
         with ds:
-            files, table, header, footer = _write_run(case, ds, stage.path, plots)
+            files, table, header, footer = _write_run(case, ds, stage.path, plots, figures)
     files = stage.finals([nc, *files])
     note = linearity_note(result)
     notes = () if note is None else (note,)
@@ -637,9 +640,13 @@ _PLOTTED = ("psd_acceleration", "psd_force", "psd_floor_acceleration")
 
 
 def _write_run(
-    case: Case, ds: xr.Dataset, folder: Path, plots: bool
+    case: Case, ds: xr.Dataset, folder: Path, plots: bool, figures: RunFigures | None = None
 ) -> tuple[list[Path], pd.DataFrame, list[str], list[str]]:
-    """The files of :func:`run_to_folder` besides ``results.nc``, its table and summary lines."""
+    """The files of :func:`run_to_folder` besides ``results.nc``, its table and summary lines.
+
+    `figures`: the figures already being drawn (:func:`railvib.plot.start_run_figures`),
+    else drawn here with `plots`.
+    """
     table = summary_table(summary(ds, bands=case.output.rms_bands))
     header = case_header(case)
     contact = contact_line(ds)
@@ -663,13 +670,11 @@ def _write_run(
     if "octave_level_acceleration" in ds:
         octaves = octave_table(ds).to_csv(float_format="%.2f")
         files.append(write_text(folder / "third_octave.csv", octaves))
-    if plots:
-        from railvib.plot.criteria import save_criteria_plots  # matplotlib: when plotting
-        from railvib.plot.psd import save_overview
-
+    if figures is not None:
+        files += figures.result()
+    elif plots:
         for name in _PLOTTED:  # a streamed file's: read once, not once per line drawn
             if name in ds:
                 ds[name].load()
-        files += save_overview(ds, folder)
-        files += save_criteria_plots(ds, folder)
+        files += save_run_figures(ds, folder)
     return files, table, header, footer

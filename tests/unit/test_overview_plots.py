@@ -106,6 +106,7 @@ def test_run_to_folder_writes_every_png_through_save_figure(tmp_path, monkeypatc
 
     monkeypatch.setattr(psd_plot, "save_figure", spy)
     monkeypatch.setattr(criteria_plot, "save_figure", spy)
+    monkeypatch.setenv("RAILVIB_BACKGROUND", "0")  # the spy's list is this process's
     case = railvib.case_from_dict(
         {"preset": "wang2017_metro", "frequency": {"f_min": 1.0, "f_max": 200.0, "step": 2.0}}
     )

@@ -7,6 +7,7 @@ from pathlib import Path
 import click
 
 from railvib.case import load_case
+from railvib.cli.dask_probe import defer_dask_probe
 from railvib.errors import CaseError, LinearModelInvalid
 from railvib.solve import run_to_folder
 
@@ -37,6 +38,7 @@ def run_case_command(
     force : bool
         Run a grid of more than 2,000,000 frequencies.
     """
+    defer_dask_probe()  # a run makes no dask array: xarray need not import dask to know
     case = load_case(case_file, force=force)
     if strict and case.mode != "stationary":  # before anything is computed or written
         raise CaseError(

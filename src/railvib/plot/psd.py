@@ -11,7 +11,7 @@ stating the case and its speed.
 from __future__ import annotations
 
 import textwrap
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from functools import partial
 from pathlib import Path
 
@@ -431,7 +431,13 @@ def _emptied(ax: Axes) -> Axes:
     return ax
 
 
-def save_overview(ds: xr.Dataset, outdir: str | Path, *, logx: bool = True) -> list[Path]:
+def save_overview(
+    ds: xr.Dataset,
+    outdir: str | Path,
+    *,
+    logx: bool = True,
+    stems: Collection[str] | None = None,
+) -> list[Path]:
     """Write the figures of :func:`overview_figures` as ``<stem>.png`` to `outdir`.
 
     The one-panel figures are drawn in turn on one figure, emptied between them (the
@@ -446,6 +452,9 @@ def save_overview(ds: xr.Dataset, outdir: str | Path, *, logx: bool = True) -> l
         Folder for the PNG files (each through :func:`railvib.io.save_figure`).
     logx : bool
         Logarithmic frequency axes.
+    stems : collection of str, optional
+        Only the figures of these file stems (of :data:`railvib.plot.OVERVIEW_STEMS`);
+        None: all.
 
     Returns
     -------
@@ -454,10 +463,12 @@ def save_overview(ds: xr.Dataset, outdir: str | Path, *, logx: bool = True) -> l
     """
     outdir = Path(outdir)
     files = []
-    fig, ax = new_figure(figsize=_ONE_PANEL_IN)
-    for stem, title, draw in _one_panel(ds, logx):
+    panels = [(s, t, d) for s, t, d in _one_panel(ds, logx) if stems is None or s in stems]
+    if panels:
+        fig, ax = new_figure(figsize=_ONE_PANEL_IN)
+    for stem, title, draw in panels:
         draw(ax=_emptied(ax))
         files.append(save_figure(_titled(fig, ax, ds, title), outdir / f"{stem}.png", tight=False))
-    if "pad_stiffness" in ds:
+    if "pad_stiffness" in ds and (stems is None or "pad_stiffness" in stems):
         files.append(save_figure(_pad_figure(ds, logx), outdir / "pad_stiffness.png", tight=False))
     return files
