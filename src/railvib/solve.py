@@ -56,6 +56,7 @@ from railvib.results.dataset import (
     result_variables,
     save_csv,
     save_netcdf,
+    value_arrays,
 )
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
@@ -136,9 +137,15 @@ def run_system(
     check = ContactCheck(loss_of_contact_threshold=loss_of_contact_threshold)
     seats = _seats(system, f)
     seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
+    n_dof, n_wheel = len(system.vehicle.dofs), len(system.vehicle.wheels)
+    values = value_arrays(f.size, n_dof, n_wheel)
+    # the responses written straight into the result's arrays where the fused kernel
+    # solves them (the vehicle's and the rail's columns of frf_displacement, frf_force)
+    frf_u = values["frf_displacement"]
+    into = (frf_u[:, :n_dof], values["frf_force"], frf_u[:, n_dof:], seat_rail)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        blocks = _kept(system.frf_blocks(f, observe=seats), seat_rail)
-        values, labels, n_wheel = per_frequency_values(f, blocks, s_r)
+        blocks = _kept(system.frf_blocks(f, observe=seats, into=into), seat_rail)
+        values, labels, n_wheel = per_frequency_values(f, blocks, s_r, out=values)
     # every variable wrapped, not copied, and the dataset built once at the end
     data, coords = result_variables(f, labels, n_wheel, values)
     loads = system.vehicle.static_wheel_loads()

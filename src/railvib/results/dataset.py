@@ -31,6 +31,7 @@ __all__ = [
     "load_netcdf",
     "open_netcdf",
     "per_frequency_values",
+    "value_arrays",
     "result_variables",
     "save_csv",
     "save_netcdf",
@@ -114,10 +115,35 @@ def build_dataset_blocks(
     return assemble(data, coords, attrs)  # one alignment for all, not one per variable
 
 
+def value_arrays(n_freq: int, n_dof: int, n_wheel: int) -> dict[str, NDArray[np.generic]]:
+    """Empty arrays for the values of every variable of :data:`VARIABLES` over a grid.
+
+    Parameters
+    ----------
+    n_freq : int
+        Frequencies of the grid.
+    n_dof : int
+        The vehicle's DOFs.
+    n_wheel : int
+        Its wheels.
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        By variable name, ``(n_freq[, n])`` of the variable's type (as
+        :func:`railvib.results.variables.compute_variables` gives it).
+    """
+    zero = np.zeros((1, n_dof), dtype=np.complex128)
+    wheels = np.zeros((1, n_wheel), dtype=np.complex128)
+    one = compute_variables(FRF(np.ones(1), zero, wheels, wheels), np.ones(1), VARIABLES)
+    return {k: np.empty((n_freq, *v.shape[1:]), v.dtype) for k, v in one.items()}
+
+
 def per_frequency_values(
     f: NDArray[np.float64],
     blocks: Iterable[tuple[slice, FRF]],
     irregularity_psd: NDArray[np.float64],
+    out: dict[str, NDArray[np.generic]] | None = None,
 ) -> tuple[dict[str, NDArray[np.generic]], tuple[str, ...], int]:
     """The values of every variable of :data:`VARIABLES` over `f`, filled block by block.
 
@@ -129,6 +155,10 @@ def per_frequency_values(
         Indices into `f` and the responses there, covering `f` (no batch axes).
     irregularity_psd : numpy.ndarray
         One-sided temporal irregularity PSD applied, m^2/Hz, ``(n_freq,)``.
+    out : dict of numpy.ndarray, optional
+        The arrays to fill (:func:`value_arrays`); where a block's responses are already
+        their rows (:meth:`railvib.coupling.CoupledSystem.frf_blocks`' `into`), they are
+        not copied. Default: new arrays.
 
     Returns
     -------
@@ -140,13 +170,11 @@ def per_frequency_values(
         The number of wheels.
     """
     s_r = np.asarray(irregularity_psd, dtype=float)
-    values: dict[str, NDArray[np.generic]] = {}
+    values: dict[str, NDArray[np.generic]] = {} if out is None else out
     frf: FRF | None = None
     for sl, frf in blocks:
         if not values:  # the arrays laid out as the first block's values
-            one = FRF(frf.f[:1], frf.vehicle[:1], frf.rail[:1], frf.contact_force[:1], frf.dofs)
-            first = compute_variables(one, s_r[sl][:1], VARIABLES)
-            values = {k: np.empty((f.size, *v.shape[1:]), v.dtype) for k, v in first.items()}
+            values = value_arrays(f.size, frf.vehicle.shape[-1], frf.n_wheel)
         write_variables({k: v[sl] for k, v in values.items()}, frf, s_r[sl])
     assert frf is not None, "at least one block"
     return values, frf.labels, frf.n_wheel
@@ -353,7 +381,7 @@ def all_finite(values: Iterable[NDArray[np.generic]]) -> bool:
     Parameters
     ----------
     values : iterable of numpy.ndarray
-        The arrays.
+        The arrays, in any unit (dimensionless here: only their finiteness is tested).
 
     Returns
     -------
