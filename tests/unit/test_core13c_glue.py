@@ -68,21 +68,34 @@ def test_value_arrays_are_laid_out_as_the_variables_are_computed():
         assert got[name].dtype == values.dtype, name
 
 
-def test_support_force_psd_gives_the_values_of_support_force_data():
+def test_support_force_psd_is_the_pads_force_from_the_seats_displacement():
+    """On a rigid base the pad carries ``K* w(x_s)``, ``w(x_s) = sum_j alpha(x_s, x_j) P_j``."""
     system, spectrum = _system()
+    track = system.track
     f = np.linspace(1.0, 300.0, 40)
     frf = system.frf(f)
     s_r = spectrum.temporal(f, system.speed)
+    seats, names, psd = support_force_psd(system, f, s_r, lambda: frf.contact_force)
+    x = system.wheel_positions
+    assert names == ["pad"]
+    # wheels at 0.3, -1.9, -12.3, -14.5 m, seats every 0.6 m: the nearest (the one ahead
+    # for the two at mid-span)
+    np.testing.assert_allclose(x, [0.3, -1.9, -12.3, -14.5], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(seats, [0.6, -1.8, -12.0, -14.4], rtol=0, atol=1e-12)
+    rail = np.stack([track.receptance(f, x, [s])[:, 0, :] for s in seats], axis=1)  # (f, seat, w)
+    w_seat = np.sum(rail * frf.contact_force[:, None, :], axis=2)
+    pad = track.pad.stiffness(f, track.pad_temperature)
+    expected = np.abs(pad[:, None] * w_seat) ** 2 * s_r[:, None]
+    # the same products summed in another order: rounding, ~1e-15 relative
+    np.testing.assert_allclose(psd[..., 0], expected, rtol=1e-12, atol=0)
+    # and support_force_data gives these arrays as its variables
     data = {
         "frequency": xr.Variable("frequency", f),
         "irregularity_psd": xr.Variable("frequency", s_r),
         "frf_force": xr.Variable(("frequency", "wheel"), frf.contact_force),
     }
     variables = support_force_data(system, data)
-    seats, names, psd = support_force_psd(system, f, s_r, lambda: frf.contact_force)
-    np.testing.assert_array_equal(psd, variables["psd_support_force"].values)
-    np.testing.assert_array_equal(seats, variables["support_position"].values)
-    assert names == list(variables["layer"].values)
+    np.testing.assert_array_equal(variables["psd_support_force"].values, psd)
 
 
 def test_fused_points_refuses_out_arrays_of_the_wrong_shape():
