@@ -26,6 +26,7 @@ from railvib.results.dataset import all_finite, value_arrays
 from railvib.results.variables import VARIABLES, compute_variables
 from railvib.solve import run_system, stream_to_netcdf
 from railvib.track import compiled
+from railvib.track.stacked import receptance_entries, stacked_waves
 
 NUMBA = importlib.util.find_spec("numba") is not None
 
@@ -158,3 +159,38 @@ def test_a_streamed_run_on_the_fused_kernel_writes_the_held_runs_values(tmp_path
     for name, var in held.data_vars.items():
         if "frequency" in var.dims:
             np.testing.assert_array_equal(streamed[name].values, var.values, err_msg=name)
+
+
+def test_the_wave_kernel_forms_a_repeated_entry_once():
+    """Two loads a whole number of bays apart, each seen at its own place: one entry."""
+    tables = compiled._geometry((0.25, -4.75), (0.25, -4.75, 0.5))
+    entry = tables[-1]
+    # (1, 1) repeats (0, 0): the same local coordinate, side and bay count (0 bays)
+    assert entry[1, 1] == 0
+    assert entry[0, 0] == 0
+    # the others are their own: the bay counts 5 and 0, or another observation coordinate
+    assert entry[0, 1] == 1
+    assert entry[1, 0] == 2
+    assert entry[2, 0] == 4
+    assert entry[2, 1] == 5
+
+
+@pytest.mark.slow  # loads numba and the kernel: 1-3 s
+@pytest.mark.skipif(not NUMBA, reason="the wave kernel needs numba (the fast extra)")
+def test_a_repeated_entry_is_the_numpy_kernels_value():
+    """The copied entries against the NumPy kernel, which forms every entry itself."""
+    compiled.compile_kernel()
+    beta4 = np.array([0.01 + 0.001j, 0.5 + 0.02j, 3.0 + 0.1j])
+    pad = np.array([2.0 + 0.2j, 1.0 + 0.1j, 0.7 + 0.05j])
+    x = np.array([0.25, -4.75])
+    obs = np.array([0.25, -4.75, 0.5])
+    got, _, bad = compiled.compiled_receptance(beta4, pad, x, obs)
+    assert not bad.any()
+    expected = np.stack(
+        [np.stack(row, axis=-1) for row in receptance_entries(stacked_waves(beta4, pad), x, obs)],
+        axis=-2,
+    )
+    # two kernels, the same expressions in another order: rounding, ~1e-15 of the largest
+    scale = np.abs(expected).max()
+    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-13 * scale)
+    np.testing.assert_array_equal(got[:, 1, 1], got[:, 0, 0])
