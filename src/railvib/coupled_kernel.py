@@ -82,7 +82,7 @@ def fused_points(
     contact_stiffness: float,
     delays: NDArray[np.float64],
     run: Any = None,
-    out: tuple[NDArray[np.complex128], ...] | None = None,
+    out: tuple[NDArray[Any], ...] | None = None,
 ) -> tuple[NDArray[Any], ...]:
     """One case's vehicle condensation, coupled solve and body recovery, point by point.
 

@@ -137,7 +137,7 @@ class CoupledSystem:
         f: ArrayLike,
         block: int | None = None,
         observe: ArrayLike | None = None,
-        into: tuple[NDArray[np.complex128], ...] | None = None,
+        into: tuple[NDArray[Any], ...] | None = None,
     ) -> Iterator[tuple[slice, FRF]]:
         """The responses of :meth:`frf` block by block, so memory is bounded by the block.
 
@@ -220,7 +220,7 @@ class CoupledSystem:
         x_obs: NDArray[np.float64],
         delays: NDArray[np.float64],
         observed_wanted: bool,
-        out: tuple[NDArray[np.complex128], ...] | None = None,
+        out: tuple[NDArray[Any], ...] | None = None,
     ) -> FRF:
         """One block of :meth:`frf_blocks` on the compiled fused kernel (:func:`fused_points`).
 

@@ -252,10 +252,10 @@ def stream_to_netcdf(
                     data |= _extra(loads, pad_k)
                     check_finite_variables(data, fb, grid=f)
                 rail = None if seats is None else frf.rail_observed
-                parts = support_force_psd(system, fb, s_r, lambda c=frf.contact_force: c, rail)
+                parts = support_force_psd(system, fb, s_r, frf.contact_force, rail)
                 if parts is not None:
                     support_ms.add(fb, parts[2])
-                force_ms.add(fb, values["psd_force"])
+                force_ms.add(fb, np.asarray(values["psd_force"], dtype=float))
                 if sl.start == 0:  # the layout, with the whole-grid values as placeholders
                     support = support_variables(fb, parts)
                     support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}

@@ -176,7 +176,7 @@ def support_force_psd(
     system: CoupledSystem,
     f: NDArray[np.float64],
     irregularity_psd: NDArray[np.float64],
-    contact_force: Callable[[], NDArray[np.complex128]],
+    contact_force: NDArray[np.complex128] | Callable[[], NDArray[np.complex128]],
     rail: NDArray[np.complex128] | None = None,
 ) -> tuple[NDArray[np.float64], list[str], NDArray[np.float64]] | None:
     """The PSDs of :func:`support_force_data` as arrays (a streamed run's later blocks).
@@ -189,9 +189,10 @@ def support_force_psd(
         Frequencies, Hz, ``(n_freq,)``.
     irregularity_psd : numpy.ndarray
         One-sided temporal irregularity PSD, m^2/Hz, ``(n_freq,)``.
-    contact_force : callable
-        Gives the contact forces per metre of irregularity, N/m, ``(n_freq, n_wheel)``
-        (called only where they are needed: a slab, or `rail` not given).
+    contact_force : numpy.ndarray or callable
+        The contact forces per metre of irregularity, N/m, ``(n_freq, n_wheel)``, or a
+        callable giving them (called only where they are needed: a slab, or `rail` not
+        given; a lazily opened file's variable is then not read).
     rail : numpy.ndarray, optional
         The rail displacement at the seats per metre of irregularity, m/m, as in
         :func:`support_force_variables`.
@@ -204,9 +205,10 @@ def support_force_psd(
     """
     track = system.track
     s_r = irregularity_psd
+    forces = contact_force if callable(contact_force) else lambda: contact_force
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
-        contact = np.asarray(contact_force(), dtype=np.complex128)  # (frequency, wheel)
+        contact = np.asarray(forces(), dtype=np.complex128)  # (frequency, wheel)
         support = track.seat_forces(f, system.wheel_positions, contact)
         slab_layers = list(support.force)
         psd = np.stack(
@@ -223,7 +225,7 @@ def support_force_psd(
     for start in range(0, f.size, FREQUENCY_BLOCK):
         sl = slice(start, start + FREQUENCY_BLOCK)
         if rail is None:
-            contact = np.asarray(contact_force()[sl], dtype=np.complex128)
+            contact = np.asarray(forces()[sl], dtype=np.complex128)
             receptance = track.receptance(f[sl], system.wheel_positions, seats)  # (f, seat, w)
             rail_block = np.einsum("fsw,fw->fs", receptance, contact)
         else:

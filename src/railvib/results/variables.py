@@ -216,9 +216,7 @@ def write_variables(
     out["irregularity_psd"][...] = s_r
 
 
-def _psd_into(
-    h: NDArray[np.complex128], s_r: NDArray[np.float64], out: NDArray[np.float64]
-) -> None:
+def _psd_into(h: NDArray[np.generic], s_r: NDArray[np.float64], out: NDArray[np.generic]) -> None:
     """:func:`_psd` written into `out`: ``|H|`` there, squared and scaled in place."""
     np.abs(h, out=out)
     np.multiply(out, out, out=out)  # what ``** 2`` computes
