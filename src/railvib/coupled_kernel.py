@@ -82,6 +82,7 @@ def fused_points(
     contact_stiffness: float,
     delays: NDArray[np.float64],
     run: Any = None,
+    out: tuple[NDArray[Any], ...] | None = None,
 ) -> tuple[NDArray[Any], ...]:
     """One case's vehicle condensation, coupled solve and body recovery, point by point.
 
@@ -116,6 +117,10 @@ def fused_points(
     run : callable, optional
         The point kernel (default: the compiled one; the plain Python function ``_fused``
         gives the same numbers, slowly).
+    out : tuple of numpy.ndarray, optional
+        The arrays to write the vehicle, contact-force, rail and observed responses into
+        (the shapes of those returned; views, e.g. a run's result arrays' rows and
+        columns, so that no block's response is copied into place); new ones by default.
 
     Returns
     -------
@@ -129,11 +134,14 @@ def fused_points(
         caller solves them densely).
     """
     n, n_obs, n_w = receptance.shape
-    u_v = np.empty((n, program.n_dof), dtype=np.complex128)
-    force = np.empty((n, n_w), dtype=np.complex128)
-    rail = np.empty((n, n_w), dtype=np.complex128)
+    shapes = ((n, program.n_dof), (n, n_w), (n, n_w), (n, n_obs - n_w))
+    if out is None:
+        out = tuple(np.empty(shape, dtype=np.complex128) for shape in shapes)
+    for array, shape in zip(out, shapes, strict=True):
+        if array.shape != shape or array.dtype != np.complex128:
+            raise ValueError(f"out: {array.shape} {array.dtype}, not {shape} complex128")
+    u_v, force, rail, observed = out
     rec = np.empty((n, n_w, n_w), dtype=np.complex128)
-    observed = np.empty((n, n_obs - n_w), dtype=np.complex128)
     bad = np.zeros(n, dtype=np.bool_)
     (fused_kernel() if run is None else run)(
         np.ascontiguousarray(f, dtype=float),

@@ -133,7 +133,11 @@ class CoupledSystem:
         )
 
     def frf_blocks(
-        self, f: ArrayLike, block: int | None = None, observe: ArrayLike | None = None
+        self,
+        f: ArrayLike,
+        block: int | None = None,
+        observe: ArrayLike | None = None,
+        into: tuple[NDArray[Any], ...] | None = None,
     ) -> Iterator[tuple[slice, FRF]]:
         """The responses of :meth:`frf` block by block, so memory is bounded by the block.
 
@@ -148,6 +152,12 @@ class CoupledSystem:
             Further points of the rail, m (e.g. the rail seats under the wheels): their
             receptance from the wheels is taken from the same waves as the contact's, one
             track solve per block, and their displacement is ``FRF.rail_observed``.
+        into : tuple of numpy.ndarray, optional
+            Arrays over the whole of `f` for the vehicle ``(n_freq, n_dof)``, contact-force
+            ``(n_freq, n_wheel)``, rail ``(n_freq, n_wheel)`` and observed ``(n_freq,
+            n_observe)`` responses (e.g. a run's result arrays' columns): where the fused
+            kernel solves a block, its responses are written straight into their rows,
+            and the block's FRF holds those rows (no copy into place).
 
         Yields
         ------
@@ -175,7 +185,8 @@ class CoupledSystem:
             sl = slice(start, min(start + step, f.size))
             fb = f[sl]
             if fast_solve:
-                yield sl, self._fused_block(fb, x, x_obs, delays, observe is not None)
+                rows = None if into is None else tuple(a[sl] for a in into)
+                yield sl, self._fused_block(fb, x, x_obs, delays, observe is not None, rows)
                 continue
             if compiled:
                 rec_obs = _compiled_receptance(self.track, fb, x, x_obs)
@@ -209,11 +220,13 @@ class CoupledSystem:
         x_obs: NDArray[np.float64],
         delays: NDArray[np.float64],
         observed_wanted: bool,
+        out: tuple[NDArray[Any], ...] | None = None,
     ) -> FRF:
         """One block of :meth:`frf_blocks` on the compiled fused kernel (:func:`fused_points`).
 
         The frequencies where the kernel's vehicle elimination fails its pivot test are
-        solved again by the NumPy path (condensed densely with LAPACK's pivoting).
+        solved again by the NumPy path (condensed densely with LAPACK's pivoting). `out`:
+        the arrays the responses are written into (:func:`fused_points`), or None.
         """
         rec_obs, scale = _receptance_parts(self.track, f, x, x_obs)
         vehicle = self.vehicle
@@ -225,6 +238,7 @@ class CoupledSystem:
             scale,
             self.contact_stiffness,
             delays,
+            out=out,
         )
         if bad.any():
             cond = vehicle.condensed_to_wheels(f[bad])

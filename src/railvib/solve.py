@@ -41,11 +41,14 @@ from railvib.outputs.supports import (
     gives_seat_forces,
     seat_positions,
     support_force_data,
+    support_force_psd,
+    support_variables,
 )
 from railvib.outputs.weighting import COMFORT_RANGE_HZ
 from railvib.plot import OVERVIEW_STEMS, RunFigures, save_run_figures, start_run_figures
 from railvib.response import FRF
 from railvib.results.dataset import (
+    all_finite,
     assemble,
     check_finite_variables,
     open_netcdf,
@@ -53,12 +56,13 @@ from railvib.results.dataset import (
     result_variables,
     save_csv,
     save_netcdf,
+    value_arrays,
 )
 from railvib.results.report import summary_csv, summary_markdown, summary_text
 from railvib.results.stats import summary, summary_table
 from railvib.results.stream import RunningIntegral, netcdf_stream
 from railvib.results.trains import car_table
-from railvib.results.variables import VARIABLES, compute_variables
+from railvib.results.variables import VARIABLES, write_variables
 from railvib.spectra.base import SpatialSpectrum
 
 __all__ = [
@@ -133,9 +137,15 @@ def run_system(
     check = ContactCheck(loss_of_contact_threshold=loss_of_contact_threshold)
     seats = _seats(system, f)
     seat_rail = np.empty((f.size, 0 if seats is None else seats.size), dtype=np.complex128)
+    n_dof, n_wheel = len(system.vehicle.dofs), len(system.vehicle.wheels)
+    values = value_arrays(f.size, n_dof, n_wheel)
+    # the responses written straight into the result's arrays where the fused kernel
+    # solves them (the vehicle's and the rail's columns of frf_displacement, frf_force)
+    frf_u = values["frf_displacement"]
+    into = (frf_u[:, :n_dof], values["frf_force"], frf_u[:, n_dof:], seat_rail)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        blocks = _kept(system.frf_blocks(f, observe=seats), seat_rail)
-        values, labels, n_wheel = per_frequency_values(f, blocks, s_r)
+        blocks = _kept(system.frf_blocks(f, observe=seats, into=into), seat_rail)
+        values, labels, n_wheel = per_frequency_values(f, blocks, s_r, out=values)
     # every variable wrapped, not copied, and the dataset built once at the end
     data, coords = result_variables(f, labels, n_wheel, values)
     loads = system.vehicle.static_wheel_loads()
@@ -218,30 +228,43 @@ def stream_to_netcdf(
     force_ms, support_ms = RunningIntegral(), RunningIntegral()
     support: dict[str, xr.Variable] = {}
     criteria_ds = xr.Dataset()
+    checked = (*VARIABLES, "pad_stiffness")  # as run_system checks (not the support forces)
     with netcdf_stream(path, f.size) as stream:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
             for sl, frf in system.frf_blocks(f, block=block, observe=seats):
                 fb = f[sl]
                 s_r = spectrum.temporal(fb, system.speed)
-                values = compute_variables(frf, s_r, VARIABLES)
-                data, coords = result_variables(fb, frf.labels, frf.n_wheel, values)
-                data |= _extra(loads, system.track.pad.stiffness(fb, system.track.pad_temperature))
-                check_finite_variables(data, fb, grid=f)
+                pad_k = system.track.pad.stiffness(fb, system.track.pad_temperature)
+                # the block's values filled as run_system fills its whole grid's (the same
+                # operations: the file's values are the held run's bit for bit), a later
+                # block's straight into the rows of the file's next write
+                if sl.start == 0:
+                    values = per_frequency_values(fb, [(slice(None), frf)], s_r)[0]
+                else:
+                    values = stream.rows(sl)
+                    write_variables(values, frf, s_r)
+                    values["frequency"][...] = fb
+                    values["pad_stiffness"][...] = pad_k
+                if sl.start == 0 or not all_finite(values[k] for k in checked):
+                    # the variables (the first block: the file's layout; a block that fails
+                    # the check: the message names the variable and the frequencies)
+                    data, coords = result_variables(fb, frf.labels, frf.n_wheel, values)
+                    data |= _extra(loads, pad_k)
+                    check_finite_variables(data, fb, grid=f)
                 rail = None if seats is None else frf.rail_observed
-                support = support_force_data(
-                    system, {"frequency": coords["frequency"], **data}, rail=rail
-                )
-                support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
-                data |= support
+                parts = support_force_psd(system, fb, s_r, frf.contact_force, rail)
+                if parts is not None:
+                    support_ms.add(fb, parts[2])
                 force_ms.add(fb, np.asarray(values["psd_force"], dtype=float))
-                if support:
-                    support_ms.add(fb, support["psd_support_force"].values)
                 if sl.start == 0:  # the layout, with the whole-grid values as placeholders
+                    support = support_variables(fb, parts)
+                    support_coords = {k: support.pop(k) for k in SUPPORT_COORDS if k in support}
+                    data |= support
                     data |= check.variables(force_ms.total, loads, ("wheel",), *band)
                     layout = assemble(data, coords | support_coords, _meta(system, attrs))
                     stream.first(layout)
-                else:
-                    stream.block(sl, {"frequency": fb, **{k: v.values for k, v in data.items()}})
+                elif parts is not None:
+                    values["psd_support_force"][...] = parts[2]
         whole = check.variables(force_ms.total, loads, ("wheel",), *band)
         if support:
             rms = support["support_force_rms"]

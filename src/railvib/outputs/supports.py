@@ -18,7 +18,7 @@ over the bay, per bay of one rail.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 import numpy as np
 import xarray as xr
@@ -33,6 +33,8 @@ __all__ = [
     "gives_seat_forces",
     "seat_positions",
     "support_force_data",
+    "support_force_psd",
+    "support_variables",
     "support_force_variables",
 ]
 
@@ -141,29 +143,89 @@ def support_force_data(
         (:data:`SUPPORT_COORDS`: ``layer`` and ``support_position``); empty for a track
         without seat forces.
     """
-    track = system.track
     f = ds["frequency"].values
-    s_r = ds["irregularity_psd"].values
+    parts = support_force_psd(
+        system, f, ds["irregularity_psd"].values, lambda: ds["frf_force"].values, rail
+    )
+    return support_variables(f, parts)
+
+
+def support_variables(
+    f: NDArray[np.float64],
+    parts: tuple[NDArray[np.float64], list[str], NDArray[np.float64]] | None,
+) -> dict[str, xr.Variable]:
+    """The variables of :func:`support_force_data` from :func:`support_force_psd`'s arrays.
+
+    Parameters
+    ----------
+    f : numpy.ndarray
+        Frequencies, Hz, ``(n_freq,)``.
+    parts : tuple or None
+        The seat positions (m), layer names and PSDs (N^2/Hz) of
+        :func:`support_force_psd`, or None (no seat forces).
+
+    Returns
+    -------
+    dict of xarray.Variable
+        As :func:`support_force_data`; empty for None.
+    """
+    return {} if parts is None else _variables(f, *parts)
+
+
+def support_force_psd(
+    system: CoupledSystem,
+    f: NDArray[np.float64],
+    irregularity_psd: NDArray[np.float64],
+    contact_force: NDArray[np.complex128] | Callable[[], NDArray[np.complex128]],
+    rail: NDArray[np.complex128] | None = None,
+) -> tuple[NDArray[np.float64], list[str], NDArray[np.float64]] | None:
+    """The PSDs of :func:`support_force_data` as arrays (a streamed run's later blocks).
+
+    Parameters
+    ----------
+    system : CoupledSystem
+        The system of the result.
+    f : numpy.ndarray
+        Frequencies, Hz, ``(n_freq,)``.
+    irregularity_psd : numpy.ndarray
+        One-sided temporal irregularity PSD, m^2/Hz, ``(n_freq,)``.
+    contact_force : numpy.ndarray or callable
+        The contact forces per metre of irregularity, N/m, ``(n_freq, n_wheel)``, or a
+        callable giving them (called only where they are needed: a slab, or `rail` not
+        given; a lazily opened file's variable is then not read).
+    rail : numpy.ndarray, optional
+        The rail displacement at the seats per metre of irregularity, m/m, as in
+        :func:`support_force_variables`.
+
+    Returns
+    -------
+    tuple or None
+        The seat (or bay) positions, m, the layer names, and the PSDs, N^2/Hz,
+        ``(frequency, wheel, layer)``; None for a track without seat forces.
+    """
+    track = system.track
+    s_r = irregularity_psd
+    forces = contact_force if callable(contact_force) else lambda: contact_force
     per_rail = track.pad.factor if isinstance(track.pad, ScaledPad) else 1.0
     if isinstance(track, SlabTrack):  # the slab couples the seats: all wheels at once
-        contact = np.asarray(ds["frf_force"].values, dtype=np.complex128)  # (frequency, wheel)
+        contact = np.asarray(forces(), dtype=np.complex128)  # (frequency, wheel)
         support = track.seat_forces(f, system.wheel_positions, contact)
         slab_layers = list(support.force)
         psd = np.stack(
             [np.abs(support.force[name] / per_rail) ** 2 * s_r[:, None] for name in slab_layers],
             axis=-1,
         )  # (frequency, wheel, layer)
-        return _variables(f, support.x, slab_layers, psd)
+        return support.x, slab_layers, psd
     seats = seat_positions(system.wheel_positions, track.sleeper_spacing)
     if not gives_seat_forces(system, f):  # a track without seats modelled one by one
-        return {}
+        return None
     names: list[str] = []
     psd = np.empty((f.size, seats.size, 0))
     # block by block, so the temporaries are a block's whatever the grid
     for start in range(0, f.size, FREQUENCY_BLOCK):
         sl = slice(start, start + FREQUENCY_BLOCK)
         if rail is None:
-            contact = np.asarray(ds["frf_force"].values[sl], dtype=np.complex128)
+            contact = np.asarray(forces()[sl], dtype=np.complex128)
             receptance = track.receptance(f[sl], system.wheel_positions, seats)  # (f, seat, w)
             rail_block = np.einsum("fsw,fw->fs", receptance, contact)
         else:
@@ -172,9 +234,10 @@ def support_force_data(
         if not names:
             names = list(layers)
             psd = np.empty((f.size, seats.size, len(names)))  # (frequency, wheel, layer)
-        for i, name in enumerate(names):
-            psd[sl, :, i] = np.abs(layers[name] / per_rail) ** 2 * s_r[sl, None]
-    return _variables(f, seats, names, psd)
+        for i, name in enumerate(names):  # |F / per_rail|^2 S_r, in place
+            size = np.abs(layers[name] if per_rail == 1.0 else layers[name] / per_rail)
+            np.multiply(np.multiply(size, size, out=size), s_r[sl, None], out=psd[sl, :, i])
+    return seats, names, psd
 
 
 #: the coordinates among :func:`support_force_data`'s variables

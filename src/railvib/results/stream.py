@@ -39,7 +39,7 @@ from numpy.typing import NDArray
 
 from railvib.grid import trapezoid
 from railvib.io import atomic_path
-from railvib.results.dataset import _decoded, _encode
+from railvib.results.dataset import BOOL_STORED_AS, _decoded, _encode
 
 __all__ = ["NetCDFStream", "RunningIntegral", "WRITE_FREQUENCIES", "netcdf_stream"]
 
@@ -198,6 +198,8 @@ class NetCDFStream:
         self._buffers: dict[str, NDArray[np.generic]] = {}
         self._start = 0  # the grid index of the buffers' first frequency
         self._held = 0  # frequencies in the buffers
+        self._size = WRITE_FREQUENCIES  # frequencies the buffers hold
+        self._stored_as: dict[str, str] = {}  # the complex ("part") and boolean variables
 
     def first(self, ds: xr.Dataset) -> None:
         """Write the first block: `ds` holds every variable of the result, its first frequencies.
@@ -219,6 +221,12 @@ class NetCDFStream:
             self._file, engine="h5netcdf", unlimited_dims=("frequency",), encoding=encoding
         )
         self._along = [str(k) for k in encoding]
+        for name in self._along:
+            attrs = out[name].attrs
+            if attrs.get("complex_stored_as") == "part":
+                self._stored_as[name] = "complex"
+            elif attrs.get(BOOL_STORED_AS) == "bool":
+                self._stored_as[name] = "bool"
         self._file.check()  # before HDF5 reads the file back
         per_frequency = sum(out[k].nbytes for k in self._along) / n_block
         self._file.reserve(int(per_frequency * self._n + RESERVE_EXTRA * self._n) + 2**20)
@@ -231,41 +239,47 @@ class NetCDFStream:
         self._datasets = {name: self._h5[name] for name in self._along}
         self._file.check()
 
-    def block(self, sl: slice, values: Mapping[str, NDArray[np.generic]]) -> None:
-        """Write a later block: the values of the variables over ``frequency`` at indices `sl`.
+    def rows(self, sl: slice) -> dict[str, NDArray[np.generic]]:
+        """The rows where a later block goes: to be filled in place with its values.
 
         The blocks must come in the grid's order; they are gathered into writes of up to
-        :data:`WRITE_FREQUENCIES` frequencies (the rest written by :meth:`finish`).
+        :data:`WRITE_FREQUENCIES` frequencies (the rest written by :meth:`finish`), each
+        filled where it is written from: no copy of a block is made.
 
         Parameters
         ----------
         sl : slice
             The block's indices into the whole grid.
-        values : mapping of str to numpy.ndarray
-            The block's values of every variable over ``frequency`` (``frequency`` among
-            them), frequency first, in the units of the result.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            By name of every variable over ``frequency`` (``frequency`` among them), its
+            rows for the block, frequency first, of the result's type (complex and
+            boolean: views of the stored (re, im) pairs and int8 values), to be filled
+            before the next call.
         """
-        assert self._h5 is not None, "first() before block()"
+        assert self._h5 is not None, "first() before rows()"
         n = sl.stop - sl.start
-        if self._held and (
-            sl.start != self._start + self._held or self._held + n > WRITE_FREQUENCIES
-        ):
+        if self._held and (sl.start != self._start + self._held or self._held + n > self._size):
             self._flush()
+        if n > self._size:  # a block larger than a write: the buffers grown to it
+            self._buffers, self._size = {}, n
         if not self._held:
             self._start = sl.start
-        if n >= WRITE_FREQUENCIES:  # a block as large as a write: written as it is
-            for name, dataset in self._datasets.items():
-                dataset[sl] = _stored(np.asarray(values[name]))
-            self._file.check()
-            return
+        out: dict[str, NDArray[np.generic]] = {}
         for name, dataset in self._datasets.items():
-            value = np.asarray(values[name])
             if name not in self._buffers:
-                self._buffers[name] = np.empty(
-                    (WRITE_FREQUENCIES, *dataset.shape[1:]), dataset.dtype
-                )
-            _store_into(self._buffers[name][self._held : self._held + n], value)
+                self._buffers[name] = np.empty((self._size, *dataset.shape[1:]), dataset.dtype)
+            rows = self._buffers[name][self._held : self._held + n]
+            kind = self._stored_as.get(name)
+            if kind == "complex":  # (re, im) pairs: a complex array's own layout
+                rows = rows.view(np.result_type(rows.dtype, np.complex64))[..., 0]
+            elif kind == "bool":
+                rows = rows.view(np.bool_)
+            out[name] = rows
         self._held += n
+        return out
 
     def _flush(self) -> None:
         """Write the gathered blocks into the file."""
@@ -321,15 +335,6 @@ class NetCDFStream:
             self._datasets = {}
             self._h5.close()
             self._h5 = None
-
-
-def _store_into(out: NDArray[np.generic], value: NDArray[np.generic]) -> None:
-    """`value` written into `out` as :func:`_stored` lays it out, without a temporary."""
-    if np.iscomplexobj(value):
-        out[..., 0] = value.real
-        out[..., 1] = value.imag
-    else:
-        out[...] = value  # a bool into the int8 buffer as 0 and 1
 
 
 def _stored(value: NDArray[np.generic]) -> NDArray[np.generic]:

@@ -209,11 +209,18 @@ def write_variables(
     displacement = out["frf_displacement"]
     displacement[:, :n_dof] = frf.vehicle
     displacement[:, n_dof:] = frf.rail
-    np.multiply(np.abs(displacement) ** 2, s_r[:, None], out=out["psd_displacement"])
+    _psd_into(displacement, s_r, out["psd_displacement"])
     np.multiply(out["psd_displacement"], _omega4(frf.f), out=out["psd_acceleration"])
     out["frf_force"][...] = frf.contact_force
-    np.multiply(np.abs(frf.contact_force) ** 2, s_r[:, None], out=out["psd_force"])
+    _psd_into(frf.contact_force, s_r, out["psd_force"])
     out["irregularity_psd"][...] = s_r
+
+
+def _psd_into(h: NDArray[np.generic], s_r: NDArray[np.float64], out: NDArray[np.generic]) -> None:
+    """:func:`_psd` written into `out`: ``|H|`` there, squared and scaled in place."""
+    np.abs(h, out=out)
+    np.multiply(out, out, out=out)  # what ``** 2`` computes
+    np.multiply(out, s_r[:, None], out=out)
 
 
 def response_psds(

@@ -184,7 +184,11 @@ def _geometry(x_load: tuple[float, ...], x_obs: tuple[float, ...]) -> tuple[NDAr
 
     Kept per geometry: every block of a run or a sweep has the same few (about 80 us of
     NumPy calls each time otherwise). Returns ``x_pow, series, xi_u, load_u, eta_u, obs_u,
-    side, power, exponents`` as :func:`_points` takes them (read only).
+    side, power, exponents, entry`` as :func:`_points` takes them (read only). ``entry[i, j]``
+    is the first entry (row-major index) of the same load coordinate, observation
+    coordinate, side and bay count as ``(i, j)``: the same operations on the same values,
+    so it is formed once and copied (the wheels of two bogies a whole number of bays apart,
+    and the seats under them: 24 distinct of the default case's 32 entries).
     """
     load, obs = np.array(x_load), np.array(x_obs)
     ref_load, xi = _nearest_sleeper(load)
@@ -198,6 +202,12 @@ def _geometry(x_load: tuple[float, ...], x_obs: tuple[float, ...]) -> tuple[NDAr
     )
     side = (obs[:, None] < load[None, :]).astype(np.int64)  # 0: right-going waves
     exponents, power = np.unique(np.abs(ref_obs[:, None] - ref_load[None, :]), return_inverse=True)
+    power = power.reshape(side.shape)
+    keys = np.stack(
+        np.broadcast_arrays(load_u.ravel()[None, :], obs_u.ravel()[:, None], side, power), axis=-1
+    ).reshape(-1, 4)
+    first: dict[tuple[int, ...], int] = {}
+    entry = np.array([first.setdefault(tuple(key), e) for e, key in enumerate(keys.tolist())])
     tables = (
         np.stack([x_abs, x_abs**2, x_abs**3, x_abs**4], axis=1),
         series.ravel().astype(np.int64),
@@ -206,8 +216,9 @@ def _geometry(x_load: tuple[float, ...], x_obs: tuple[float, ...]) -> tuple[NDAr
         eta_u.astype(float),
         obs_u.ravel().astype(np.int64),
         side,
-        power.reshape(side.shape).astype(np.int64),
+        power.astype(np.int64),
         exponents.astype(np.int64),
+        entry.reshape(side.shape).astype(np.int64),
     )
     for table in tables:
         table.flags.writeable = False
@@ -256,6 +267,7 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
     side: Any,
     power: Any,
     exponents: Any,
+    entry: Any,
     inv_fact: Any,
     energy_tol: float,
     weak_cross: float,
@@ -268,7 +280,8 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
 
     `x_pow` holds ``|x|, x^2, x^3, x^4`` of each distinct local coordinate (row 0 and the
     entries of `series` say which row: first the half bay, then the loads' `xi_u`, then
-    the observation points' `eta_u`); their Krylov functions are summed once a point.
+    the observation points' `eta_u`); their Krylov functions are summed once a point, and
+    each distinct entry is formed once (`entry`: the first of its repeats, :func:`_geometry`).
 
     The points go in batches of `_B`, structure of arrays: every stage is one loop over
     the batch's points without branches (a point that needs one, a weak pivot or a
@@ -294,6 +307,7 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
     n_ent = n_obs * n_load
     ent = np.zeros(2 * n_ent * _B)
     flat = out.reshape((n_points, n_ent))
+    entry_of = entry.reshape(n_ent)
     pivot2 = pivot_threshold**2  # magnitudes compared squared: no hypot
     for start in range(0, n_points, _B):
         n = min(_B, n_points - start)
@@ -861,6 +875,8 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
         # the batch's rows, then copied point by point: a scattered store stops LLVM)
         for i_obs in range(n_obs):
             for j in range(n_load):
+                if entry[i_obs, j] != i_obs * n_load + j:
+                    continue  # a repeat of an entry formed before: copied below
                 sd = side[i_obs, j]
                 at_a = 8 * load_u[j] * _B + 4 * sd * _B
                 at_m = 4 * power[i_obs, j] * _B
@@ -877,7 +893,8 @@ def _points(  # noqa: C901, PLR0912, PLR0915 - the stages of one batch, written 
                     ent[at + i], ent[at + _B + i] = v.real, v.imag
         for i in range(n):
             for e in range(n_ent):
-                flat[start + i, e] = complex(ent[2 * e * _B + i], ent[(2 * e + 1) * _B + i])
+                r = entry_of[e]
+                flat[start + i, e] = complex(ent[2 * r * _B + i], ent[(2 * r + 1) * _B + i])
         for i in range(n):
             bad[start + i] = w[_FLAG + i] > 0.0
             condition[start + i] = w[_COND + i]
