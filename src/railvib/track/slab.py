@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from abc import abstractmethod
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -47,9 +48,9 @@ from railvib.track.cells import (
     cell_waves,
     span_stiffness,
 )
-from railvib.track.compiled_cells import use_compiled_cells
+from railvib.track.compiled_cells import fused_kernel
 from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail, TrackWaves
-from railvib.track.slab_kernel import slab_kernel, slab_receptance
+from railvib.track.slab_kernel import slab_receptance
 
 __all__ = [
     "FLOATING_SLAB_PARAMETERS",
@@ -855,8 +856,9 @@ class SlabTrack(PeriodicTrack):
         # the layers once over all of f (a stacked sweep's pads are given point by point)
         layers = self.layer_stiffness(f)
         load, obs = (load_cell, load_x), (obs_cell, obs_x)
-        if self.rail.shear_stiffness is None and use_compiled_cells() and slab_kernel():
-            out = self._fused_receptance(f, layers, load, obs)
+        kernel = fused_kernel()
+        if self.rail.shear_stiffness is None and kernel is not None:
+            out = self._fused_receptance(f, layers, load, obs, kernel)
         else:
             out = self._cell_receptance(f, layers, load, obs)
         bad = ~np.isfinite(out).all(axis=(1, 2))
@@ -899,8 +901,9 @@ class SlabTrack(PeriodicTrack):
         layers: dict[str, NDArray[np.complex128]],
         load: tuple[NDArray[np.int64], NDArray[np.float64]],
         obs: tuple[NDArray[np.int64], NDArray[np.float64]],
+        kernel: Any,
     ) -> NDArray[np.complex128]:
-        """:meth:`_cell_receptance` on the fused compiled kernel (:mod:`railvib.track.slab_kernel`).
+        """:meth:`_cell_receptance` on the fused compiled `kernel` (:mod:`railvib.track.slab_kernel`).
 
         The same cells, the same algorithm, in one pass; the frequencies it flags (a weak
         pivot of its elimination without row exchanges, or a doubling not converged) are
@@ -934,6 +937,7 @@ class SlabTrack(PeriodicTrack):
             MAX_DOUBLINGS,
             CONVERGED,
             CLOSED_FORM_WAVENUMBER**4,
+            kernel,
         )
         if np.any(bad):
             out[bad] = self._cell_receptance(

@@ -56,7 +56,7 @@ _INVERSE_FACTORIALS = np.array(
 _KERNEL: list[Any] = []
 
 #: the point functions compiled, helpers first (each calls only those before it)
-_FUNCTIONS = ("_pattern", "_solve", "_span_lane", "_assemble", "_batches")
+_FUNCTIONS = ("_pattern", "_solve", "_span_lane", "_assemble", "_doubling", "_propagate", "_batches")
 
 
 def slab_kernel() -> Any:
@@ -185,16 +185,24 @@ def _pattern(n_dof: Any, spans: Any, springs: Any, rows: Any, cols: Any) -> Any:
     return nz
 
 
-def _solve(a: Any, b: Any, nz: Any, n: int, flag: Any, pivot2: float, s: Any, inv: Any) -> None:
+def _solve(a: Any, b: Any, nz: Any, n: int, flag: Any, pivot2: float, s: Any) -> None:
     """``b <- a^-1 b`` of each lane, equilibrated, by elimination without row exchanges.
 
-    `a` ``(k, k, BATCH)`` is overwritten, `b` ``(k, r, BATCH)``; `nz` the structural
-    nonzeros of `a` with its fill-in (:func:`_pattern`); `n` lanes in use. A lane with a
-    pivot below ``sqrt(pivot2)`` of an entry under it gets ``flag = 1``. `s` and `inv`
-    ``(k, BATCH)`` are scratch.
+    `a` ``(k, k, BATCH)`` is left as it is, `b` ``(k, r, BATCH)`` overwritten; `nz` the
+    structural nonzeros of `a` with its fill-in (:func:`_pattern`); `n` lanes in use. A
+    lane with a pivot below ``sqrt(pivot2)`` of an entry under it gets ``flag = 1``. `s`
+    ``(k, BATCH)`` is scratch. The real and imaginary parts are held apart (each
+    update a loop of real operations over the lanes, which LLVM vectorises).
     """
     k = a.shape[0]
     r = b.shape[1]
+    lanes = a.shape[2]
+    ur = np.empty((k, k, lanes))
+    ui = np.empty((k, k, lanes))
+    xr = np.empty((k, r, lanes))
+    xi = np.empty((k, r, lanes))
+    ivr = np.empty((k, lanes))
+    ivi = np.empty((k, lanes))
     for i in range(k):
         for lane in range(n):
             d = a[i, i, lane]
@@ -203,44 +211,94 @@ def _solve(a: Any, b: Any, nz: Any, n: int, flag: Any, pivot2: float, s: Any, in
         for j in range(k):
             if nz[i, j]:
                 for lane in range(n):
-                    a[i, j, lane] = a[i, j, lane] * (s[i, lane] * s[j, lane])
+                    w = s[i, lane] * s[j, lane]
+                    ur[i, j, lane] = a[i, j, lane].real * w
+                    ui[i, j, lane] = a[i, j, lane].imag * w
         for q in range(r):
             for lane in range(n):
-                b[i, q, lane] = b[i, q, lane] * s[i, lane]
+                xr[i, q, lane] = b[i, q, lane].real * s[i, lane]
+                xi[i, q, lane] = b[i, q, lane].imag * s[i, lane]
     for j in range(k):
         for lane in range(n):
-            p = a[j, j, lane]
-            size = p.real * p.real + p.imag * p.imag
-            den = 1.0 / size
-            inv[j, lane] = complex(p.real * den, -p.imag * den)
+            pr, pi = ur[j, j, lane], ui[j, j, lane]
+            den = 1.0 / (pr * pr + pi * pi)
+            ivr[j, lane] = pr * den
+            ivi[j, lane] = -pi * den
         for i in range(j + 1, k):
             if not nz[i, j]:
                 continue
             for lane in range(n):
-                p = a[j, j, lane]
-                g = a[i, j, lane]
-                weak = g.real * g.real + g.imag * g.imag > (p.real * p.real + p.imag * p.imag) / pivot2
+                pr, pi = ur[j, j, lane], ui[j, j, lane]
+                gr, gi = ur[i, j, lane], ui[i, j, lane]
+                weak = (gr * gr + gi * gi) * pivot2 > pr * pr + pi * pi
                 flag[lane] = max(flag[lane], 1.0 if weak else 0.0)
-                a[i, j, lane] = g * inv[j, lane]
+                ur[i, j, lane] = gr * ivr[j, lane] - gi * ivi[j, lane]
+                ui[i, j, lane] = gr * ivi[j, lane] + gi * ivr[j, lane]
             for q in range(j + 1, k):
                 if nz[j, q]:
                     for lane in range(n):
-                        a[i, q, lane] = a[i, q, lane] - a[i, j, lane] * a[j, q, lane]
+                        gr, gi = ur[i, j, lane], ui[i, j, lane]
+                        vr, vi = ur[j, q, lane], ui[j, q, lane]
+                        ur[i, q, lane] = ur[i, q, lane] - (gr * vr - gi * vi)
+                        ui[i, q, lane] = ui[i, q, lane] - (gr * vi + gi * vr)
             for q in range(r):
                 for lane in range(n):
-                    b[i, q, lane] = b[i, q, lane] - a[i, j, lane] * b[j, q, lane]
+                    gr, gi = ur[i, j, lane], ui[i, j, lane]
+                    vr, vi = xr[j, q, lane], xi[j, q, lane]
+                    xr[i, q, lane] = xr[i, q, lane] - (gr * vr - gi * vi)
+                    xi[i, q, lane] = xi[i, q, lane] - (gr * vi + gi * vr)
     for j in range(k - 1, -1, -1):
         for q in range(r):
             for i in range(j + 1, k):
                 if nz[j, i]:
                     for lane in range(n):
-                        b[j, q, lane] = b[j, q, lane] - a[j, i, lane] * b[i, q, lane]
+                        gr, gi = ur[j, i, lane], ui[j, i, lane]
+                        vr, vi = xr[i, q, lane], xi[i, q, lane]
+                        xr[j, q, lane] = xr[j, q, lane] - (gr * vr - gi * vi)
+                        xi[j, q, lane] = xi[j, q, lane] - (gr * vi + gi * vr)
             for lane in range(n):
-                b[j, q, lane] = b[j, q, lane] * inv[j, lane]
+                vr, vi = xr[j, q, lane], xi[j, q, lane]
+                xr[j, q, lane] = vr * ivr[j, lane] - vi * ivi[j, lane]
+                xi[j, q, lane] = vr * ivi[j, lane] + vi * ivr[j, lane]
     for i in range(k):
         for q in range(r):
             for lane in range(n):
-                b[i, q, lane] = b[i, q, lane] * s[i, lane]
+                b[i, q, lane] = complex(xr[i, q, lane] * s[i, lane], xi[i, q, lane] * s[i, lane])
+
+
+def _propagate(step: Any, q: Any, steps: int, n: int) -> None:
+    """``q[t + 1] = step q[t]`` for ``t < steps`` in each lane (`q` ``(steps + 1, m, BATCH)``).
+
+    Real and imaginary parts apart, as :func:`_solve`.
+    """
+    m = step.shape[0]
+    lanes = step.shape[2]
+    sr = np.empty((m, m, lanes))
+    si = np.empty((m, m, lanes))
+    vr = np.empty((steps + 1, m, lanes))
+    vi = np.empty((steps + 1, m, lanes))
+    for i in range(m):
+        for j in range(m):
+            for lane in range(n):
+                sr[i, j, lane] = step[i, j, lane].real
+                si[i, j, lane] = step[i, j, lane].imag
+        for lane in range(n):
+            vr[0, i, lane] = q[0, i, lane].real
+            vi[0, i, lane] = q[0, i, lane].imag
+    for t in range(steps):
+        for i in range(m):
+            for lane in range(n):
+                vr[t + 1, i, lane] = 0.0
+                vi[t + 1, i, lane] = 0.0
+            for j in range(m):
+                for lane in range(n):
+                    gr, gi = sr[i, j, lane], si[i, j, lane]
+                    ur, ui = vr[t, j, lane], vi[t, j, lane]
+                    vr[t + 1, i, lane] = vr[t + 1, i, lane] + (gr * ur - gi * ui)
+                    vi[t + 1, i, lane] = vi[t + 1, i, lane] + (gr * ui + gi * ur)
+        for i in range(m):
+            for lane in range(n):
+                q[t + 1, i, lane] = complex(vr[t + 1, i, lane], vi[t + 1, i, lane])
 
 
 def _span_lane(b4: complex, closed_from: float, n_terms: int, coeff: Any, k: Any) -> None:
@@ -266,13 +324,15 @@ def _span_lane(b4: complex, closed_from: float, n_terms: int, coeff: Any, k: Any
         sh = complex(shx * cy, chx * sy)
         b = complex(x, y)
         d = 1.0 - c * ch
+        den = 1.0 / (d.real * d.real + d.imag * d.imag)
+        inv = complex(d.real * den, -d.imag * den)  # 1 / D, one division for the six
         b2 = b * b
-        k11 = b2 * b * (c * sh + sn * ch) / d
-        k12 = b2 * sn * sh / d
-        k13 = -(b2 * b) * (sh + sn) / d
-        k14 = b2 * (ch - c) / d
-        k22 = b * (sn * ch - c * sh) / d
-        k24 = b * (sh - sn) / d
+        k11 = b2 * b * (c * sh + sn * ch) * inv
+        k12 = b2 * sn * sh * inv
+        k13 = -(b2 * b) * (sh + sn) * inv
+        k14 = b2 * (ch - c) * inv
+        k22 = b * (sn * ch - c * sh) * inv
+        k24 = b * (sh - sn) * inv
         k[0, 0], k[0, 1], k[0, 2], k[0, 3] = k11, k12, k13, k14
         k[1, 0], k[1, 1], k[1, 2], k[1, 3] = k12, k22, -k14, k24
         k[2, 0], k[2, 1], k[2, 2], k[2, 3] = k13, -k14, k11, -k12
@@ -291,10 +351,12 @@ def _span_lane(b4: complex, closed_from: float, n_terms: int, coeff: Any, k: Any
     s20, s21, s22, s23 = b4 * a1, b4 * a2, a0, -b4 * a3
     s30, s31, s32, s33 = -b4 * a2, -b4 * a3, -a1, a0
     det = s02 * s13 - s03 * s12
-    k[0, 2] = s13 / det  # k_ab = s_ab^-1
-    k[0, 3] = -s03 / det
-    k[1, 2] = -s12 / det
-    k[1, 3] = s02 / det
+    den = 1.0 / (det.real * det.real + det.imag * det.imag)
+    inv = complex(det.real * den, -det.imag * den)
+    k[0, 2] = s13 * inv  # k_ab = s_ab^-1
+    k[0, 3] = -s03 * inv
+    k[1, 2] = -s12 * inv
+    k[1, 3] = s02 * inv
     k[0, 0] = -(k[0, 2] * s00 + k[0, 3] * s10)  # k_aa = -k_ab s_aa
     k[0, 1] = -(k[0, 2] * s01 + k[0, 3] * s11)
     k[1, 0] = -(k[1, 2] * s00 + k[1, 3] * s10)
@@ -336,6 +398,175 @@ def _assemble(out: Any, spans: Any, span_k: Any, springs: Any, values: Any, n: i
                 out[j, j, lane] = out[j, j, lane] + values[v, lane]
                 out[i, j, lane] = out[i, j, lane] - values[v, lane]
                 out[j, i, lane] = out[j, i, lane] - values[v, lane]
+
+
+def _doubling(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the step written out
+    a: Any,
+    b: Any,
+    e: Any,
+    p_r: Any,
+    p_l: Any,
+    n: int,
+    max_doublings: int,
+    conv2: float,
+    pivot2: float,
+    flag: Any,
+) -> None:
+    """The doubling of each lane's equilibrated boundary blocks (``(m, m, BATCH)`` each).
+
+    The symmetric step of a reciprocal cell (``C = B^T``): ``A' = A - B S^-1 B^T``, ``E' =
+    E - B^T S^-1 B`` (upper triangles), ``B' = -B S^-1 B``, ``S = A + E`` solved by
+    elimination without row exchanges (`flag` = 1 at a weak pivot), until ``max|B'|^2 <=
+    conv2 max(|A'|^2, |E'|^2)`` in every lane (or `max_doublings`; `flag` = 1 for a lane
+    not converged). `P_r`, `P_l` receive each lane's ``A'``, ``E'`` at its convergence. The
+    real and imaginary parts are held apart here (each update a loop of real operations
+    over the lanes, which LLVM vectorises); `a`, `b`, `e` are not changed.
+    """
+    m = a.shape[0]
+    lanes = a.shape[2]
+    ar = np.empty((m, m, lanes))
+    ai = np.empty((m, m, lanes))
+    br = np.empty((m, m, lanes))
+    bi = np.empty((m, m, lanes))
+    er = np.empty((m, m, lanes))
+    ei = np.empty((m, m, lanes))
+    sr = np.empty((m, m, lanes))
+    si = np.empty((m, m, lanes))
+    yr = np.empty((m, 2 * m, lanes))
+    yi = np.empty((m, 2 * m, lanes))
+    ivr = np.empty((m, lanes))
+    ivi = np.empty((m, lanes))
+    size = np.empty(lanes)
+    coupling = np.empty(lanes)
+    done = np.zeros(lanes)
+    for i in range(m):
+        for j in range(m):
+            for lane in range(n):
+                ar[i, j, lane] = a[i, j, lane].real
+                ai[i, j, lane] = a[i, j, lane].imag
+                br[i, j, lane] = b[i, j, lane].real
+                bi[i, j, lane] = b[i, j, lane].imag
+                er[i, j, lane] = e[i, j, lane].real
+                ei[i, j, lane] = e[i, j, lane].imag
+    for _ in range(max_doublings):
+        for i in range(m):
+            for j in range(m):
+                for lane in range(n):
+                    sr[i, j, lane] = er[i, j, lane] + ar[i, j, lane]
+                    si[i, j, lane] = ei[i, j, lane] + ai[i, j, lane]
+                    yr[i, j, lane] = br[j, i, lane]
+                    yi[i, j, lane] = bi[j, i, lane]
+                    yr[i, m + j, lane] = br[i, j, lane]
+                    yi[i, m + j, lane] = bi[i, j, lane]
+        for j in range(m):  # y = S^-1 [B^T, B]: the elimination, the right-hand sides along
+            for lane in range(n):
+                pr, pi = sr[j, j, lane], si[j, j, lane]
+                den = 1.0 / (pr * pr + pi * pi)
+                ivr[j, lane] = pr * den
+                ivi[j, lane] = -pi * den
+            for i in range(j + 1, m):
+                for lane in range(n):
+                    pr, pi = sr[j, j, lane], si[j, j, lane]
+                    xr, xi = sr[i, j, lane], si[i, j, lane]
+                    weak = (xr * xr + xi * xi) * pivot2 > pr * pr + pi * pi
+                    flag[lane] = max(flag[lane], 1.0 if weak else 0.0)
+                    sr[i, j, lane] = xr * ivr[j, lane] - xi * ivi[j, lane]
+                    si[i, j, lane] = xr * ivi[j, lane] + xi * ivr[j, lane]
+                for q in range(j + 1, m):
+                    for lane in range(n):
+                        gr, gi = sr[i, j, lane], si[i, j, lane]
+                        ur, ui = sr[j, q, lane], si[j, q, lane]
+                        sr[i, q, lane] = sr[i, q, lane] - (gr * ur - gi * ui)
+                        si[i, q, lane] = si[i, q, lane] - (gr * ui + gi * ur)
+                for q in range(2 * m):
+                    for lane in range(n):
+                        gr, gi = sr[i, j, lane], si[i, j, lane]
+                        ur, ui = yr[j, q, lane], yi[j, q, lane]
+                        yr[i, q, lane] = yr[i, q, lane] - (gr * ur - gi * ui)
+                        yi[i, q, lane] = yi[i, q, lane] - (gr * ui + gi * ur)
+        for j in range(m - 1, -1, -1):
+            for q in range(2 * m):
+                for i in range(j + 1, m):
+                    for lane in range(n):
+                        gr, gi = sr[j, i, lane], si[j, i, lane]
+                        ur, ui = yr[i, q, lane], yi[i, q, lane]
+                        yr[j, q, lane] = yr[j, q, lane] - (gr * ur - gi * ui)
+                        yi[j, q, lane] = yi[j, q, lane] - (gr * ui + gi * ur)
+                for lane in range(n):
+                    ur, ui = yr[j, q, lane], yi[j, q, lane]
+                    yr[j, q, lane] = ur * ivr[j, lane] - ui * ivi[j, lane]
+                    yi[j, q, lane] = ur * ivi[j, lane] + ui * ivr[j, lane]
+        for lane in range(n):
+            size[lane] = 0.0
+            coupling[lane] = 0.0
+        # the new A and E (upper triangles) into s, the new B into the B^T columns of y
+        # (after they are used): A' = A - B y1, E' = E - B^T y2, B' = -B y2
+        for i in range(m):
+            for j in range(i, m):
+                for lane in range(n):
+                    sr[i, j, lane] = ar[i, j, lane]
+                    si[i, j, lane] = ai[i, j, lane]
+                    ivr[0, lane] = er[i, j, lane]  # (ivr, ivi: scratch now)
+                    ivi[0, lane] = ei[i, j, lane]
+                for q in range(m):
+                    for lane in range(n):
+                        gr, gi = br[i, q, lane], bi[i, q, lane]
+                        ur, ui = yr[q, j, lane], yi[q, j, lane]
+                        sr[i, j, lane] = sr[i, j, lane] - (gr * ur - gi * ui)
+                        si[i, j, lane] = si[i, j, lane] - (gr * ui + gi * ur)
+                        gr, gi = br[q, i, lane], bi[q, i, lane]
+                        ur, ui = yr[q, m + j, lane], yi[q, m + j, lane]
+                        ivr[0, lane] = ivr[0, lane] - (gr * ur - gi * ui)
+                        ivi[0, lane] = ivi[0, lane] - (gr * ui + gi * ur)
+                for lane in range(n):
+                    er[i, j, lane] = ivr[0, lane]  # E's upper triangle: no longer read
+                    ei[i, j, lane] = ivi[0, lane]
+                    v = max(
+                        sr[i, j, lane] * sr[i, j, lane] + si[i, j, lane] * si[i, j, lane],
+                        ivr[0, lane] * ivr[0, lane] + ivi[0, lane] * ivi[0, lane],
+                    )
+                    size[lane] = max(size[lane], v)
+        for i in range(m):
+            for j in range(m):
+                for lane in range(n):
+                    yr[j, i, lane] = 0.0  # column i of y1 (= S^-1 B^T) is done with
+                    yi[j, i, lane] = 0.0
+                for q in range(m):
+                    for lane in range(n):
+                        gr, gi = br[i, q, lane], bi[i, q, lane]
+                        ur, ui = yr[q, m + j, lane], yi[q, m + j, lane]
+                        yr[j, i, lane] = yr[j, i, lane] - (gr * ur - gi * ui)
+                        yi[j, i, lane] = yi[j, i, lane] - (gr * ui + gi * ur)
+                for lane in range(n):
+                    v = yr[j, i, lane] * yr[j, i, lane] + yi[j, i, lane] * yi[j, i, lane]
+                    coupling[lane] = max(coupling[lane], v)
+        for i in range(m):
+            for j in range(m):
+                lo, hi = min(i, j), max(i, j)
+                for lane in range(n):
+                    ar[i, j, lane] = sr[lo, hi, lane]
+                    ai[i, j, lane] = si[lo, hi, lane]
+                    br[i, j, lane] = yr[j, i, lane]
+                    bi[i, j, lane] = yi[j, i, lane]
+        for i in range(m):
+            for j in range(i + 1, m):
+                for lane in range(n):
+                    er[j, i, lane] = er[i, j, lane]
+                    ei[j, i, lane] = ei[i, j, lane]
+        all_done = True
+        for lane in range(n):
+            if done[lane] == 0.0 and coupling[lane] <= conv2 * size[lane]:
+                done[lane] = 1.0
+                for i in range(m):
+                    for j in range(m):
+                        p_r[i, j, lane] = complex(ar[i, j, lane], ai[i, j, lane])
+                        p_l[i, j, lane] = complex(er[i, j, lane], ei[i, j, lane])
+            all_done = all_done and done[lane] != 0.0
+        if all_done:
+            break
+    for lane in range(n):
+        if done[lane] == 0.0:
+            flag[lane] = 1.0  # not converged: the reference warns
 
 
 def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch, written out
@@ -408,14 +639,11 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
     a = np.empty((m, m, lanes), dtype=c16)
     b = np.empty((m, m, lanes), dtype=c16)
     e = np.empty((m, m, lanes), dtype=c16)
-    nb_ = np.empty((m, m, lanes), dtype=c16)
     sm = np.empty((m, m, lanes), dtype=c16)
-    y = np.empty((m, 2 * m, lanes), dtype=c16)
     p_r = np.empty((m, m, lanes), dtype=c16)
     p_l = np.empty((m, m, lanes), dtype=c16)
     r_step = np.empty((m, m, lanes), dtype=c16)
     l_step = np.empty((m, m, lanes), dtype=c16)
-    z = np.empty((m, m, lanes), dtype=c16)
     xl = np.empty((nli, n_p, lanes), dtype=c16)
     rp = np.empty((n_p, nb, lanes), dtype=c16)
     cond = np.empty((nb, nb, lanes), dtype=c16)
@@ -425,16 +653,13 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
     ql = np.empty((max_steps + 1, m, lanes), dtype=c16)
     res = np.empty((n_obs, n_load, lanes), dtype=c16)
     s = np.empty((max(nb, nwi, nli), lanes))
-    inv = np.empty((max(nb, nwi, nli), lanes), dtype=c16)
     flag = np.empty(lanes)
-    done = np.empty(lanes)
     bs = np.empty((m, lanes))
     kl4 = np.empty((4, 4), dtype=c16)
     for start in range(0, n_freq, lanes):
         n = min(lanes, n_freq - start)
         for lane in range(n):
             flag[lane] = 0.0
-            done[lane] = 0.0
         # -- 1. the spans of each kind, lane by lane (libm's cos, cosh: scalar)
         for kind in range(n_kind):
             beam = kind_beam[kind]
@@ -467,7 +692,7 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
                 for lane in range(n):
                     xw[i, j, lane] = kw[w_inner[i], w_bnd[j], lane]
         if nwi:
-            _solve(kii_w, xw, nz_wi, n, flag, pivot2, s, inv)
+            _solve(kii_w, xw, nz_wi, n, flag, pivot2, s)
         for i in range(nb):
             for j in range(nb):
                 for lane in range(n):
@@ -488,64 +713,7 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
                     a[i, j, lane] = 0.5 * (kbb[i, j, lane] + kbb[j, i, lane]) * w
                     b[i, j, lane] = kbb[i, m + j, lane] * w
                     e[i, j, lane] = 0.5 * (kbb[m + i, m + j, lane] + kbb[m + j, m + i, lane]) * w
-        for _ in range(max_doublings):
-            for i in range(m):
-                for j in range(m):
-                    for lane in range(n):
-                        sm[i, j, lane] = e[i, j, lane] + a[i, j, lane]
-                        y[i, j, lane] = b[j, i, lane]
-                        y[i, m + j, lane] = b[i, j, lane]
-            _solve(sm, y, dense_m, n, flag, pivot2, s, inv)  # y = S^-1 [B^T, B]
-            for i in range(m):  # the new B
-                for j in range(m):
-                    for lane in range(n):
-                        nb_[i, j, lane] = 0.0
-                    for q in range(m):
-                        for lane in range(n):
-                            nb_[i, j, lane] = nb_[i, j, lane] - b[i, q, lane] * y[q, m + j, lane]
-            for i in range(m):  # A - B S^-1 B^T, E - B^T S^-1 B: upper triangles
-                for j in range(i, m):
-                    for lane in range(n):
-                        sm[i, j, lane] = a[i, j, lane]
-                        z[i, j, lane] = e[i, j, lane]
-                    for q in range(m):
-                        for lane in range(n):
-                            sm[i, j, lane] = sm[i, j, lane] - b[i, q, lane] * y[q, j, lane]
-                            z[i, j, lane] = z[i, j, lane] - b[q, i, lane] * y[q, m + j, lane]
-            all_done = True
-            for lane in range(n):
-                size = 0.0
-                coupling = 0.0
-                for i in range(m):
-                    for j in range(m):
-                        v = nb_[i, j, lane]
-                        coupling = max(coupling, v.real * v.real + v.imag * v.imag)
-                    for j in range(i, m):
-                        v = sm[i, j, lane]
-                        size = max(size, v.real * v.real + v.imag * v.imag)
-                        v = z[i, j, lane]
-                        size = max(size, v.real * v.real + v.imag * v.imag)
-                if done[lane] == 0.0 and coupling <= conv2 * size:
-                    done[lane] = 1.0
-                    for i in range(m):
-                        for j in range(i, m):
-                            p_r[i, j, lane] = p_r[j, i, lane] = sm[i, j, lane]
-                            p_l[i, j, lane] = p_l[j, i, lane] = z[i, j, lane]
-                if done[lane] == 0.0:
-                    all_done = False
-            for i in range(m):
-                for j in range(i, m):
-                    for lane in range(n):
-                        a[i, j, lane] = a[j, i, lane] = sm[i, j, lane]
-                        e[i, j, lane] = e[j, i, lane] = z[i, j, lane]
-                for j in range(m):
-                    for lane in range(n):
-                        b[i, j, lane] = nb_[i, j, lane]
-            if all_done:
-                break
-        for lane in range(n):
-            if done[lane] == 0.0:
-                flag[lane] = 1.0  # not converged: the reference warns
+        _doubling(a, b, e, p_r, p_l, n, max_doublings, conv2, pivot2, flag)
         for i in range(m):
             for j in range(m):
                 for lane in range(n):
@@ -558,13 +726,13 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
                 for lane in range(n):
                     sm[i, j, lane] = kbb[m + i, m + j, lane] + p_r[i, j, lane]
                     r_step[i, j, lane] = -kbb[m + i, j, lane]
-        _solve(sm, r_step, dense_m, n, flag, pivot2, s, inv)
+        _solve(sm, r_step, dense_m, n, flag, pivot2, s)
         for i in range(m):
             for j in range(m):
                 for lane in range(n):
                     sm[i, j, lane] = p_l[i, j, lane] + kbb[i, j, lane]
                     l_step[i, j, lane] = -kbb[i, m + j, lane]
-        _solve(sm, l_step, dense_m, n, flag, pivot2, s, inv)
+        _solve(sm, l_step, dense_m, n, flag, pivot2, s)
         # -- 3. the loaded cell at its points, with both chains
         _assemble(kl, l_spans, span_k, l_springs, values, n)
         if n_p:
@@ -575,7 +743,7 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
                 for p in range(n_p):
                     for lane in range(n):
                         xl[i, p, lane] = 1.0 if points[p] == i else 0.0
-            _solve(kii_l, xl, nz_li, n, flag, pivot2, s, inv)  # K_ii^-1 at the points
+            _solve(kii_l, xl, nz_li, n, flag, pivot2, s)  # K_ii^-1 at the points
         for p in range(n_p):  # their rows: -X^T K_ib
             for j in range(nb):
                 for lane in range(n):
@@ -600,7 +768,7 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
                 else:
                     for lane in range(n):
                         ub[i, q, lane] = rp[load_p[q], i, lane]
-        _solve(cond, ub, dense_b, n, flag, pivot2, s, inv)
+        _solve(cond, ub, dense_b, n, flag, pivot2, s)
         for o in range(n_obs):
             for j in range(nb):
                 if obs_b[o] >= 0:
@@ -615,20 +783,8 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
                 for lane in range(n):
                     qr[0, i, lane] = ub[m + i, q, lane]
                     ql[0, i, lane] = ub[i, q, lane]
-            for t in range(right_steps[q]):
-                for i in range(m):
-                    for lane in range(n):
-                        qr[t + 1, i, lane] = 0.0
-                    for j in range(m):
-                        for lane in range(n):
-                            qr[t + 1, i, lane] = qr[t + 1, i, lane] + r_step[i, j, lane] * qr[t, j, lane]
-            for t in range(left_steps[q]):
-                for i in range(m):
-                    for lane in range(n):
-                        ql[t + 1, i, lane] = 0.0
-                    for j in range(m):
-                        for lane in range(n):
-                            ql[t + 1, i, lane] = ql[t + 1, i, lane] + l_step[i, j, lane] * ql[t, j, lane]
+            _propagate(r_step, qr, right_steps[q], n)
+            _propagate(l_step, ql, left_steps[q], n)
             for o in range(n_obs):
                 cells = offsets[o, q]
                 for lane in range(n):
