@@ -38,16 +38,8 @@ from railvib.errors import CaseError, NonFiniteResult
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_value
 from railvib.track.base import TRACKS, SupportResponse, passive_layer_stiffness
-from railvib.track.cells import (
-    CLOSED_FORM_WAVENUMBER,
-    CONVERGED,
-    MAX_DOUBLINGS,
-    Cell,
-    _where,
-    cell_receptance,
-    cell_waves,
-    span_stiffness,
-)
+from railvib.track import cells as cell_solver
+from railvib.track.cells import Cell, _where, cell_receptance, cell_waves, span_stiffness
 from railvib.track.compiled_cells import fused_kernel
 from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail, TrackWaves
 from railvib.track.slab_kernel import slab_receptance
@@ -934,9 +926,9 @@ class SlabTrack(PeriodicTrack):
             tables[1],
             where,
             obs_cell[:, None] - load_cell[None, :],
-            MAX_DOUBLINGS,
-            CONVERGED,
-            CLOSED_FORM_WAVENUMBER**4,
+            cell_solver.MAX_DOUBLINGS,
+            cell_solver.CONVERGED,
+            cell_solver.CLOSED_FORM_WAVENUMBER**4,
             kernel,
         )
         if np.any(bad):
