@@ -37,8 +37,8 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError, NonFiniteResult
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_value
-from railvib.track.base import TRACKS, SupportResponse, passive_layer_stiffness
 from railvib.track import cells as cell_solver
+from railvib.track.base import TRACKS, SupportResponse, passive_layer_stiffness
 from railvib.track.cells import Cell, _where, cell_receptance, cell_waves, span_stiffness
 from railvib.track.compiled_cells import fused_kernel
 from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail, TrackWaves
@@ -768,12 +768,14 @@ class SlabTrack(PeriodicTrack):
         for a, b, beam, length in layout.spans:
             if beam == _SLAB_BEAM:
                 k = _slab_span(slab_load, length, ei_s)
-            elif rail.shear_stiffness is None:
-                k = span_stiffness(rail.mass_per_length * omega2 * length**4 / ei_r, length, ei_r)
+                spans.append((a, b, k))
+                continue
+            beta4 = np.asarray(rail.mass_per_length * omega2 * length**4 / ei_r, np.complex128)
+            if rail.shear_stiffness is None:
+                k = span_stiffness(beta4, length, ei_r)
             else:
-                beta4 = rail.mass_per_length * omega2 * length**4 / ei_r
                 kga = rail.shear_stiffness * (ei_r / rail.bending_stiffness)
-                rotary = rail.rotary_inertia * omega2 * length**2 / ei_r
+                rotary = np.asarray(rail.rotary_inertia * omega2 * length**2 / ei_r, np.complex128)
                 k = span_stiffness(beta4, length, ei_r, ei_r / (kga * length**2), rotary)
             spans.append((a, b, k))
         values = self._spring_values(f, layers)
@@ -895,7 +897,7 @@ class SlabTrack(PeriodicTrack):
         obs: tuple[NDArray[np.int64], NDArray[np.float64]],
         kernel: Any,
     ) -> NDArray[np.complex128]:
-        """:meth:`_cell_receptance` on the fused compiled `kernel` (:mod:`railvib.track.slab_kernel`).
+        """:meth:`_cell_receptance` on the fused `kernel` (:mod:`railvib.track.slab_kernel`).
 
         The same cells, the same algorithm, in one pass; the frequencies it flags (a weak
         pivot of its elimination without row exchanges, or a doubling not converged) are

@@ -56,7 +56,15 @@ _INVERSE_FACTORIALS = np.array(
 _KERNEL: list[Any] = []
 
 #: the point functions compiled, helpers first (each calls only those before it)
-_FUNCTIONS = ("_pattern", "_solve", "_span_lane", "_assemble", "_doubling", "_propagate", "_batches")
+_FUNCTIONS = (
+    "_pattern",
+    "_solve",
+    "_span_lane",
+    "_assemble",
+    "_doubling",
+    "_propagate",
+    "_batches",
+)
 
 
 def slab_kernel() -> Any:
@@ -674,7 +682,9 @@ def _batches(  # noqa: C901, PLR0912, PLR0913, PLR0915 - the stages of one batch
             scale = (1.0, length, 1.0, length)
             for lane in range(n):
                 ei = beam_ei[beam, start + lane]
-                _span_lane(beam_load[beam, start + lane] * l4 / ei, closed_from, n_terms, coeff, kl4)
+                _span_lane(
+                    beam_load[beam, start + lane] * l4 / ei, closed_from, n_terms, coeff, kl4
+                )
                 factor = ei / length**3
                 for i in range(4):
                     for j in range(4):
