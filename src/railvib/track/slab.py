@@ -911,12 +911,14 @@ class SlabTrack(PeriodicTrack):
         kinds = sorted({(beam, length) for *_, beam, length in waves.spans + loaded.spans})
         tables = [_kernel_tables(layout, kinds, names) for layout in (waves, loaded)]
         bnd, inner = loaded.dofs()
-        where = _where(
-            bnd,
-            inner,
-            _rail_dofs(loaded.rail_nodes, load_x),
-            _rail_dofs(loaded.rail_nodes, obs_x),
-        )
+        dofs = _rail_dofs(loaded.rail_nodes, load_x), _rail_dofs(loaded.rail_nodes, obs_x)
+        # the points' DOFs eliminated last: a point close to a node (a short rail span)
+        # leaves a weak pivot in its column otherwise (a unit slab of 8 fasteners with a
+        # load 5 cm from one, 0.1 Hz-2 kHz: 1989 of 2000 frequencies flagged, 218 so)
+        points = inner[_where(bnd, inner, *dofs)[0]]
+        inner = np.concatenate([np.setdiff1d(inner, points), points])
+        where = _where(bnd, inner, *dofs)
+        tables[1] = (*tables[1][:3], inner.astype(np.int64))
         out, bad = slab_receptance(
             *self._beams(f, layers),
             np.stack([values[name] for name in names]),
