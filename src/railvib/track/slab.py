@@ -453,19 +453,24 @@ class SlabTrack(PeriodicTrack):
         else:
             slab_dofs = np.array([2 * (n_rail + _at(slab_x, x)) for x in seat_x], dtype=np.intp)
         n_seat = x_seat.size
+        rail_nodes = self._layout(extra).rail_nodes
+        load = (load_cell, _rail_dofs(rail_nodes, load_x))
+        obs = (
+            np.concatenate([seat_cell, np.repeat(seat_cell, slab_dofs.size // n_seat)]),
+            np.concatenate([_rail_dofs(rail_nodes, seat_x), slab_dofs]),
+        )
+        kernel = fused_kernel()
+        fused = None
+        if self.rail.shear_stiffness is None and kernel is not None:
+            fused = self._fused_receptance(f, layers, extra, load, obs, kernel)
         rail = np.empty((f.size, n_seat, x_load.size), dtype=np.complex128)
         slab = np.empty_like(rail)
         for block in self._blocks(f, extra):
             part = {name: k[block] for name, k in layers.items()}
-            cell, rail_nodes = self._cell(f[block], extra, part)
-            waves = cell_waves(cell)
-            load = (load_cell, _rail_dofs(rail_nodes, load_x))
-            slab_cell = np.repeat(seat_cell, slab_dofs.size // n_seat)
-            obs = (
-                np.concatenate([seat_cell, slab_cell]),
-                np.concatenate([_rail_dofs(rail_nodes, seat_x), slab_dofs]),
-            )
-            both = cell_receptance(waves, load, obs)
+            if fused is None:
+                both = cell_receptance(cell_waves(self._cell(f[block], extra, part)[0]), load, obs)
+            else:
+                both = fused[block]
             rail[block], slab_block = both[:, :n_seat], both[:, n_seat:]
             if bays:
                 # the mean over each bay: its integral (the weights times its end DOFs) / L
@@ -849,12 +854,15 @@ class SlabTrack(PeriodicTrack):
         obs_cell, obs_x = self._locate(x_obs)
         # the layers once over all of f (a stacked sweep's pads are given point by point)
         layers = self.layer_stiffness(f)
-        load, obs = (load_cell, load_x), (obs_cell, obs_x)
+        extra = np.concatenate([load_x, obs_x])
+        rail_nodes = self._layout(extra).rail_nodes
+        load = (load_cell, _rail_dofs(rail_nodes, load_x))
+        obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
         kernel = fused_kernel()
         if self.rail.shear_stiffness is None and kernel is not None:
-            out = self._fused_receptance(f, layers, load, obs, kernel)
+            out = self._fused_receptance(f, layers, extra, load, obs, kernel)
         else:
-            out = self._cell_receptance(f, layers, load, obs)
+            out = self._cell_receptance(f, layers, extra, load, obs)
         bad = ~np.isfinite(out).all(axis=(1, 2))
         if np.any(bad):
             raise NonFiniteResult(
@@ -868,33 +876,32 @@ class SlabTrack(PeriodicTrack):
         self,
         f: NDArray[np.float64],
         layers: dict[str, NDArray[np.complex128]],
-        load: tuple[NDArray[np.int64], NDArray[np.float64]],
-        obs: tuple[NDArray[np.int64], NDArray[np.float64]],
+        extra: NDArray[np.float64],
+        load: tuple[NDArray[np.int64], NDArray[np.intp]],
+        obs: tuple[NDArray[np.int64], NDArray[np.intp]],
     ) -> NDArray[np.complex128]:
-        """The rail receptance by the cell solver (:mod:`railvib.track.cells`), block by block.
+        """The receptance by the cell solver (:mod:`railvib.track.cells`), block by block.
 
-        `layers` is :meth:`layer_stiffness` at `f` (Hz); `load` and `obs` are each point's
-        cell and local position (m). Returns m/N, ``(n_freq, n_obs, n_load)``.
+        `layers` is :meth:`layer_stiffness` at `f` (Hz); `extra` the local positions (m) of
+        the loaded cell's extra rail nodes; `load` and `obs` each point's cell and DOF in
+        that cell. Returns m/N, ``(n_freq, n_obs, n_load)``.
         """
-        (load_cell, load_x), (obs_cell, obs_x) = load, obs
-        extra = np.concatenate([load_x, obs_x])
-        out = np.empty((f.size, obs_x.size, load_x.size), dtype=np.complex128)
+        out = np.empty((f.size, obs[1].size, load[1].size), dtype=np.complex128)
         for block in self._blocks(f, extra):
             part = {name: k[block] for name, k in layers.items()}
             # the waves on the cell without the points' nodes (fewer DOFs to condense)
             chain = cell_waves(self._cell(f[block], np.zeros(0), part)[0])
-            cell, rail_nodes = self._cell(f[block], extra, part)
-            loads = (load_cell, _rail_dofs(rail_nodes, load_x))
-            points = (obs_cell, _rail_dofs(rail_nodes, obs_x))
-            out[block] = cell_receptance(chain, loads, points, cell)
+            cell = self._cell(f[block], extra, part)[0]
+            out[block] = cell_receptance(chain, load, obs, cell)
         return out
 
     def _fused_receptance(
         self,
         f: NDArray[np.float64],
         layers: dict[str, NDArray[np.complex128]],
-        load: tuple[NDArray[np.int64], NDArray[np.float64]],
-        obs: tuple[NDArray[np.int64], NDArray[np.float64]],
+        extra: NDArray[np.float64],
+        load: tuple[NDArray[np.int64], NDArray[np.intp]],
+        obs: tuple[NDArray[np.int64], NDArray[np.intp]],
         kernel: Any,
     ) -> NDArray[np.complex128]:
         """:meth:`_cell_receptance` on the fused `kernel` (:mod:`railvib.track.slab_kernel`).
@@ -903,15 +910,15 @@ class SlabTrack(PeriodicTrack):
         pivot of its elimination without row exchanges, or a doubling not converged) are
         solved again by :meth:`_cell_receptance`.
         """
-        (load_cell, load_x), (obs_cell, obs_x) = load, obs
+        (load_cell, load_dof), (obs_cell, obs_dof) = load, obs
         waves = self._layout(np.zeros(0))
-        loaded = self._layout(np.concatenate([load_x, obs_x]))
+        loaded = self._layout(extra)
         values = self._spring_values(f, layers)
         names = sorted({name for *_, name in waves.springs + loaded.springs})
         kinds = sorted({(beam, length) for *_, beam, length in waves.spans + loaded.spans})
         tables = [_kernel_tables(layout, kinds, names) for layout in (waves, loaded)]
         bnd, inner = loaded.dofs()
-        dofs = _rail_dofs(loaded.rail_nodes, load_x), _rail_dofs(loaded.rail_nodes, obs_x)
+        dofs = load_dof, obs_dof
         # the points' DOFs eliminated last: a point close to a node (a short rail span)
         # leaves a weak pivot in its column otherwise (a unit slab of 8 fasteners with a
         # load 5 cm from one, 0.1 Hz-2 kHz: 1989 of 2000 frequencies flagged, 218 so)
@@ -937,7 +944,7 @@ class SlabTrack(PeriodicTrack):
         )
         if np.any(bad):
             out[bad] = self._cell_receptance(
-                f[bad], {name: k[bad] for name, k in layers.items()}, load, obs
+                f[bad], {name: k[bad] for name, k in layers.items()}, extra, load, obs
             )
         return out
 

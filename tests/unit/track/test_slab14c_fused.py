@@ -137,3 +137,20 @@ def test_compiled_fused_kernel_gives_the_numpy_receptance(monkeypatch, name):
         got = _fused(monkeypatch, kernel, lambda: track.receptance(f, X, X), calls)
     assert calls == [f.size]
     assert _peak_error(got, ref) <= RTOL
+
+
+@pytest.mark.parametrize("name", ["floating", "bearings"])  # bays of a foundation, bearings
+def test_plain_fused_kernel_gives_the_numpy_support_forces(monkeypatch, name):
+    track = TRACKS[name]
+    f = np.array([0.05, 12.0, 400.0])
+    ref = _numpy(monkeypatch, lambda: track.support_response(f, 0.45, 3))
+    calls = []
+    got = _fused(
+        monkeypatch, _plain(monkeypatch), lambda: track.support_response(f, 0.45, 3), calls
+    )
+    assert calls == [f.size]
+    for layer in ref.force:
+        assert _peak_error(got.force[layer][..., None], ref.force[layer][..., None]) <= RTOL
+    for mass in ref.displacement:
+        got_d, ref_d = got.displacement[mass][..., None], ref.displacement[mass][..., None]
+        assert _peak_error(got_d, ref_d) <= RTOL
