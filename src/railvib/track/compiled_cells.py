@@ -28,11 +28,13 @@ from numpy.typing import NDArray
 
 from railvib.jit import numba_jit
 from railvib.track import compiled
+from railvib.track.slab_kernel import slab_kernel
 
 __all__ = [
     "assembled",
     "cell_kernel",
     "euler_span",
+    "fused_kernel",
     "loaded_points",
     "propagated",
     "use_compiled_cells",
@@ -80,7 +82,11 @@ def use_compiled_cells() -> bool:
 
 
 def cell_kernel() -> Any:
-    """The compiled functions ``(waves, loaded, propagate)`` (numba, cached), or None."""
+    """The compiled functions (numba, cached), or None.
+
+    ``(waves, loaded, propagate, assemble, span, fused)``: the entry points of this module
+    and the slab track's fused kernel (:func:`railvib.track.slab_kernel.slab_kernel`).
+    """
     if not _CELL_KERNEL:
         jit = numba_jit()
         if jit is None:
@@ -89,8 +95,24 @@ def cell_kernel() -> Any:
             space = globals()
             for name in _FUNCTIONS:  # compiled at first call: callees resolve to these
                 space[name] = jit(_PLAIN[name])
-            _CELL_KERNEL.append(tuple(space[name] for name in _FUNCTIONS[3:]))  # the entry points
+            entries = tuple(space[name] for name in _FUNCTIONS[3:])
+            _CELL_KERNEL.append((*entries, slab_kernel()))  # the entry points, the fused one
     return _CELL_KERNEL[0]
+
+
+def fused_kernel() -> Any:
+    """The slab track's fused kernel (:mod:`railvib.track.slab_kernel`) where it is in use.
+
+    Returns
+    -------
+    callable or None
+        The compiled kernel where :func:`use_compiled_cells` says so and the loaded cell
+        kernel carries it, else None (the cell solver's steps are taken one by one).
+    """
+    if not use_compiled_cells():
+        return None
+    kernel = _CELL_KERNEL[0]
+    return kernel[5] if len(kernel) > 5 else None
 
 
 def wave_chain(

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from abc import abstractmethod
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -36,9 +37,12 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError, NonFiniteResult
 from railvib.pads.base import PADS, PadModel
 from railvib.registry import Parameter, check_value
+from railvib.track import cells as cell_solver
 from railvib.track.base import TRACKS, SupportResponse, passive_layer_stiffness
-from railvib.track.cells import Cell, cell_receptance, cell_waves, span_stiffness
+from railvib.track.cells import Cell, _where, cell_receptance, cell_waves, span_stiffness
+from railvib.track.compiled_cells import fused_kernel
 from railvib.track.periodic import RIGID_BASE_PARAMETERS, PeriodicTrack, Rail, TrackWaves
+from railvib.track.slab_kernel import slab_receptance
 
 __all__ = [
     "FLOATING_SLAB_PARAMETERS",
@@ -187,6 +191,41 @@ UNIT_SLAB_PARAMETERS = (
 )
 
 _BY_KEY = {p.key: p for p in (*FLOATING_SLAB_PARAMETERS, *UNIT_SLAB_PARAMETERS)}
+
+#: the beams of a span in a cell's layout
+_RAIL, _SLAB_BEAM = 0, 1
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """A cell's topology, without values (:meth:`SlabTrack._layout`).
+
+    Attributes
+    ----------
+    n_nodes : int
+        Nodes (count); node ``k`` has DOFs ``2k`` (w) and ``2k+1`` (theta).
+    spans : tuple of (int, int, int, float)
+        Each span's two nodes, its beam (``_RAIL`` or ``_SLAB_BEAM``) and length (m).
+    springs : tuple of (int, int or None, int, str)
+        Each spring's nodes (None: the ground), DOF (0: w, 1: theta) and layer name.
+    left, right : tuple of int
+        The boundary nodes at ``x = 0`` and at the period.
+    rail_nodes : dict
+        ``{local position (m): node}`` of the rail nodes.
+    """
+
+    n_nodes: int
+    spans: tuple[tuple[int, int, int, float], ...]
+    springs: tuple[tuple[int, int | None, int, str], ...]
+    left: tuple[int, ...]
+    right: tuple[int, ...]
+    rail_nodes: dict[float, int]
+
+    def dofs(self) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+        """``(boundary, interior)`` DOF indices, as :class:`railvib.track.cells.Cell`'s."""
+        nodes = np.array(self.left + self.right)
+        boundary = np.stack([2 * nodes, 2 * nodes + 1], axis=1).ravel()
+        return boundary, np.setdiff1d(np.arange(2 * self.n_nodes), boundary)
 
 
 @dataclass(frozen=True)
@@ -414,19 +453,24 @@ class SlabTrack(PeriodicTrack):
         else:
             slab_dofs = np.array([2 * (n_rail + _at(slab_x, x)) for x in seat_x], dtype=np.intp)
         n_seat = x_seat.size
+        rail_nodes = self._layout(extra).rail_nodes
+        load = (load_cell, _rail_dofs(rail_nodes, load_x))
+        obs = (
+            np.concatenate([seat_cell, np.repeat(seat_cell, slab_dofs.size // n_seat)]),
+            np.concatenate([_rail_dofs(rail_nodes, seat_x), slab_dofs]),
+        )
+        kernel = fused_kernel()
+        fused = None
+        if self.rail.shear_stiffness is None and kernel is not None:
+            fused = self._fused_receptance(f, layers, extra, load, obs, kernel)
         rail = np.empty((f.size, n_seat, x_load.size), dtype=np.complex128)
         slab = np.empty_like(rail)
         for block in self._blocks(f, extra):
             part = {name: k[block] for name, k in layers.items()}
-            cell, rail_nodes = self._cell(f[block], extra, part)
-            waves = cell_waves(cell)
-            load = (load_cell, _rail_dofs(rail_nodes, load_x))
-            slab_cell = np.repeat(seat_cell, slab_dofs.size // n_seat)
-            obs = (
-                np.concatenate([seat_cell, slab_cell]),
-                np.concatenate([_rail_dofs(rail_nodes, seat_x), slab_dofs]),
-            )
-            both = cell_receptance(waves, load, obs)
+            if fused is None:
+                both = cell_receptance(cell_waves(self._cell(f[block], extra, part)[0]), load, obs)
+            else:
+                both = fused[block]
             rail[block], slab_block = both[:, :n_seat], both[:, n_seat:]
             if bays:
                 # the mean over each bay: its integral (the weights times its end DOFs) / L
@@ -644,6 +688,69 @@ class SlabTrack(PeriodicTrack):
         )
 
     # -- the cell ---------------------------------------------------------------------------
+    def _layout(self, extra: NDArray[np.float64]) -> _Layout:
+        """The period's nodes, spans and springs with extra rail nodes at local `extra` (m)."""
+        period = self.period
+        rail_x = self._rail_spans(extra)
+        slab_x = self._slab_nodes()
+        n_rail = rail_x.size
+        # nodes: the rail, then the slab; a continuous or jointed slab also has its right
+        # boundary node (the next slab's left end): its last node, at the period
+        slab_nodes = n_rail + np.arange(slab_x.size)
+        spans = [(i, i + 1, _RAIL, float(length)) for i, length in enumerate(np.diff(rail_x))]
+        for i, length in enumerate(np.diff(slab_x)):
+            if length <= _MERGE * period:
+                continue  # the joint: two slab ends at one place, joined by springs below
+            spans.append((int(slab_nodes[i]), int(slab_nodes[i + 1]), _SLAB_BEAM, float(length)))
+        springs: list[tuple[int, int | None, int, str]] = []
+        for x in self._fasteners():
+            rail_node = int(np.argmin(np.abs(rail_x - x)))
+            springs.append((rail_node, int(slab_nodes[_at(slab_x, x)]), 0, "pad"))
+        if self.bearing is not None:
+            for x in self._bearings():
+                springs.append((int(slab_nodes[_at(slab_x, x)]), None, 0, "bearing"))
+        if self._joints() is not None:
+            a, b = int(slab_nodes[-2]), int(slab_nodes[-1])
+            springs += [(a, b, 0, "joint_shear"), (a, b, 1, "joint_bending")]
+        left: tuple[int, ...] = (0,)
+        right: tuple[int, ...] = (n_rail - 1,)
+        if self._slab_crosses():
+            left, right = (0, int(slab_nodes[0])), (n_rail - 1, int(slab_nodes[-1]))
+        return _Layout(
+            n_rail + slab_x.size,
+            tuple(spans),
+            tuple(springs),
+            left,
+            right,
+            {float(x): i for i, x in enumerate(rail_x)},
+        )
+
+    def _spring_values(
+        self, f: NDArray[np.float64], layers: dict[str, NDArray[np.complex128]]
+    ) -> dict[str, NDArray[np.complex128]]:
+        """The springs' complex stiffness at `f` by layer name (N/m, N m/rad), ``(n_freq,)``."""
+        values = dict(layers)
+        joints = self._joints()
+        if joints is not None:
+            for name, value in zip(("joint_shear", "joint_bending"), joints, strict=True):
+                values[name] = np.full(f.shape, value, dtype=np.complex128)
+        return values
+
+    def _beams(
+        self, f: NDArray[np.float64], layers: dict[str, NDArray[np.complex128]]
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """``(m omega^2 - k_f, EI*)`` of the rail and the slab at `f`, ``(2, n_freq)`` each.
+
+        N/m^2 and N m^2; the rail's ``EI*`` with :data:`VANISHING_LOSS_FACTOR` at least.
+        """
+        omega2 = (2.0 * np.pi * f) ** 2
+        rail = self.rail
+        ei_r = rail.bending_stiffness * (1.0 + 1j * max(rail.loss_factor, VANISHING_LOSS_FACTOR))
+        k_f = layers.get("foundation", 0.0)
+        slab_load = np.asarray(self.slab_mass_per_length * omega2 - k_f, dtype=np.complex128)
+        load = np.stack([rail.mass_per_length * omega2 + 0j, slab_load])
+        return load, np.stack([np.full(f.shape, ei_r), self._slab_stiffness(f)])
+
     def _cell(
         self,
         f: NDArray[np.float64],
@@ -655,53 +762,31 @@ class SlabTrack(PeriodicTrack):
         `layers` holds :meth:`layer_stiffness` at `f`. Returns the cell and ``{local
         position: node}`` of its rail nodes.
         """
-        period = self.period
+        layout = self._layout(extra)
         omega2 = (2.0 * np.pi * f) ** 2
-        rail_x = self._rail_spans(extra)
-        slab_x = self._slab_nodes()
-        n_rail = rail_x.size
-        joints = self._joints()
-        # nodes: the rail, then the slab; a continuous or jointed slab also has its right
-        # boundary node (the next slab's left end): its last node, at the period
-        slab_nodes = n_rail + np.arange(slab_x.size)
-        spans: list[tuple[int, int, NDArray[np.complex128]]] = []
         rail = self.rail
         ei_r = rail.bending_stiffness * (1.0 + 1j * max(rail.loss_factor, VANISHING_LOSS_FACTOR))
-        for i, length in enumerate(np.diff(rail_x)):
-            beta4 = rail.mass_per_length * omega2 * length**4 / ei_r
+        ei_s = self._slab_stiffness(f)
+        k_f = layers.get("foundation", 0.0)
+        slab_load = np.asarray(self.slab_mass_per_length * omega2 - k_f, dtype=np.complex128)
+        spans: list[tuple[int, int, NDArray[np.complex128]]] = []
+        for a, b, beam, length in layout.spans:
+            if beam == _SLAB_BEAM:
+                k = _slab_span(slab_load, length, ei_s)
+                spans.append((a, b, k))
+                continue
+            beta4 = np.asarray(rail.mass_per_length * omega2 * length**4 / ei_r, np.complex128)
             if rail.shear_stiffness is None:
                 k = span_stiffness(beta4, length, ei_r)
             else:
                 kga = rail.shear_stiffness * (ei_r / rail.bending_stiffness)
-                rotary = rail.rotary_inertia * omega2 * length**2 / ei_r
+                rotary = np.asarray(rail.rotary_inertia * omega2 * length**2 / ei_r, np.complex128)
                 k = span_stiffness(beta4, length, ei_r, ei_r / (kga * length**2), rotary)
-            spans.append((i, i + 1, k))
-        ei_s = self._slab_stiffness(f)
-        k_f = layers.get("foundation", 0.0)
-        slab_load = np.asarray(self.slab_mass_per_length * omega2 - k_f, dtype=np.complex128)
-        for i, length in enumerate(np.diff(slab_x)):
-            if length <= _MERGE * period:
-                continue  # the joint: two slab ends at one place, joined by springs below
-            spans.append(
-                (int(slab_nodes[i]), int(slab_nodes[i + 1]), _slab_span(slab_load, length, ei_s))
-            )
-        springs: list[tuple[int, int | None, int, NDArray[np.complex128]]] = []
-        for x in self._fasteners():
-            rail_node = int(np.argmin(np.abs(rail_x - x)))
-            springs.append((rail_node, int(slab_nodes[_at(slab_x, x)]), 0, layers["pad"]))
-        if self.bearing is not None:
-            for x in self._bearings():
-                springs.append((int(slab_nodes[_at(slab_x, x)]), None, 0, layers["bearing"]))
-        if joints is not None:
-            a, b = int(slab_nodes[-2]), int(slab_nodes[-1])
-            for dof, value in enumerate(joints):
-                springs.append((a, b, dof, np.full(f.shape, value, dtype=np.complex128)))
-        left: tuple[int, ...] = (0,)
-        right: tuple[int, ...] = (n_rail - 1,)
-        if self._slab_crosses():
-            left, right = (0, int(slab_nodes[0])), (n_rail - 1, int(slab_nodes[-1]))
-        cell = Cell(period, n_rail + slab_x.size, spans, springs, left, right)
-        return cell, {float(x): i for i, x in enumerate(rail_x)}
+            spans.append((a, b, k))
+        values = self._spring_values(f, layers)
+        springs = [(a, b, dof, values[name]) for a, b, dof, name in layout.springs]
+        cell = Cell(self.period, layout.n_nodes, spans, springs, layout.left, layout.right)
+        return cell, layout.rail_nodes
 
     def _slab_crosses(self) -> bool:
         """True if the slab's DOFs cross the cell boundary (continuous or jointed slab)."""
@@ -767,24 +852,99 @@ class SlabTrack(PeriodicTrack):
         self.check_frequencies(f)
         load_cell, load_x = self._locate(x_load)
         obs_cell, obs_x = self._locate(x_obs)
-        extra = np.concatenate([load_x, obs_x])
         # the layers once over all of f (a stacked sweep's pads are given point by point)
         layers = self.layer_stiffness(f)
-        out = np.empty((f.size, x_obs.size, x_load.size), dtype=np.complex128)
-        for block in self._blocks(f, extra):
-            part = {name: k[block] for name, k in layers.items()}
-            # the waves on the cell without the points' nodes (fewer DOFs to condense)
-            chain = cell_waves(self._cell(f[block], np.zeros(0), part)[0])
-            cell, rail_nodes = self._cell(f[block], extra, part)
-            load = (load_cell, _rail_dofs(rail_nodes, load_x))
-            obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
-            out[block] = cell_receptance(chain, load, obs, cell)
+        extra = np.concatenate([load_x, obs_x])
+        rail_nodes = self._layout(extra).rail_nodes
+        load = (load_cell, _rail_dofs(rail_nodes, load_x))
+        obs = (obs_cell, _rail_dofs(rail_nodes, obs_x))
+        kernel = fused_kernel()
+        if self.rail.shear_stiffness is None and kernel is not None:
+            out = self._fused_receptance(f, layers, extra, load, obs, kernel)
+        else:
+            out = self._cell_receptance(f, layers, extra, load, obs)
         bad = ~np.isfinite(out).all(axis=(1, 2))
         if np.any(bad):
             raise NonFiniteResult(
                 f"track receptance: {int(bad.sum())} frequencies (first {f[bad][0]:.6g} Hz) "
                 "are not finite: the doubling did not resolve the slab track's waves there; "
                 "give track.rail.loss_factor or track.slab_loss_factor (e.g. 0.01)"
+            )
+        return out
+
+    def _cell_receptance(
+        self,
+        f: NDArray[np.float64],
+        layers: dict[str, NDArray[np.complex128]],
+        extra: NDArray[np.float64],
+        load: tuple[NDArray[np.int64], NDArray[np.intp]],
+        obs: tuple[NDArray[np.int64], NDArray[np.intp]],
+    ) -> NDArray[np.complex128]:
+        """The receptance by the cell solver (:mod:`railvib.track.cells`), block by block.
+
+        `layers` is :meth:`layer_stiffness` at `f` (Hz); `extra` the local positions (m) of
+        the loaded cell's extra rail nodes; `load` and `obs` each point's cell and DOF in
+        that cell. Returns m/N, ``(n_freq, n_obs, n_load)``.
+        """
+        out = np.empty((f.size, obs[1].size, load[1].size), dtype=np.complex128)
+        for block in self._blocks(f, extra):
+            part = {name: k[block] for name, k in layers.items()}
+            # the waves on the cell without the points' nodes (fewer DOFs to condense)
+            chain = cell_waves(self._cell(f[block], np.zeros(0), part)[0])
+            cell = self._cell(f[block], extra, part)[0]
+            out[block] = cell_receptance(chain, load, obs, cell)
+        return out
+
+    def _fused_receptance(
+        self,
+        f: NDArray[np.float64],
+        layers: dict[str, NDArray[np.complex128]],
+        extra: NDArray[np.float64],
+        load: tuple[NDArray[np.int64], NDArray[np.intp]],
+        obs: tuple[NDArray[np.int64], NDArray[np.intp]],
+        kernel: Any,
+    ) -> NDArray[np.complex128]:
+        """:meth:`_cell_receptance` on the fused `kernel` (:mod:`railvib.track.slab_kernel`).
+
+        The same cells, the same algorithm, in one pass; the frequencies it flags (a weak
+        pivot of its elimination without row exchanges, or a doubling not converged) are
+        solved again by :meth:`_cell_receptance`.
+        """
+        (load_cell, load_dof), (obs_cell, obs_dof) = load, obs
+        waves = self._layout(np.zeros(0))
+        loaded = self._layout(extra)
+        values = self._spring_values(f, layers)
+        names = sorted({name for *_, name in waves.springs + loaded.springs})
+        kinds = sorted({(beam, length) for *_, beam, length in waves.spans + loaded.spans})
+        tables = [_kernel_tables(layout, kinds, names) for layout in (waves, loaded)]
+        bnd, inner = loaded.dofs()
+        dofs = load_dof, obs_dof
+        # the points' DOFs eliminated last: a point close to a node (a short rail span)
+        # leaves a weak pivot in its column otherwise (a unit slab of 8 fasteners with a
+        # load 5 cm from one, 0.1 Hz-2 kHz: 1989 of 2000 frequencies flagged, 218 so)
+        points = inner[_where(bnd, inner, *dofs)[0]]
+        inner = np.concatenate([np.setdiff1d(inner, points), points])
+        where = _where(bnd, inner, *dofs)
+        tables[1] = (*tables[1][:3], inner.astype(np.int64))
+        out, bad = slab_receptance(
+            *self._beams(f, layers),
+            np.stack([values[name] for name in names]),
+            (
+                np.array([beam for beam, _ in kinds], dtype=np.int64),
+                np.array([length for _, length in kinds]),
+            ),
+            tables[0],
+            tables[1],
+            where,
+            obs_cell[:, None] - load_cell[None, :],
+            cell_solver.MAX_DOUBLINGS,
+            cell_solver.CONVERGED,
+            cell_solver.CLOSED_FORM_WAVENUMBER**4,
+            kernel,
+        )
+        if np.any(bad):
+            out[bad] = self._cell_receptance(
+                f[bad], {name: k[bad] for name, k in layers.items()}, extra, load, obs
             )
         return out
 
@@ -995,6 +1155,28 @@ def _slab_span(
         return span_stiffness(slab_load * length**4 / ei_s, length, one)
     unit = span_stiffness(slab_load * length**4 / ei_s, length, 1.0)
     return np.asarray(unit * ei_s[:, None, None], dtype=np.complex128)
+
+
+def _kernel_tables(
+    layout: _Layout, kinds: list[tuple[int, float]], names: list[str]
+) -> tuple[NDArray[np.int64], ...]:
+    """A cell's ``(spans, springs, boundary, interior)`` tables for the fused kernel.
+
+    `kinds` are the distinct ``(beam, length m)`` of the spans, `names` the springs'
+    layers, in the order of the kernel's rows.
+    """
+    spans = [(a, b, kinds.index((beam, length))) for a, b, beam, length in layout.spans]
+    springs = [
+        (2 * a + dof, -1 if b is None else 2 * b + dof, names.index(name))
+        for a, b, dof, name in layout.springs
+    ]
+    bnd, inner = layout.dofs()
+    return (
+        np.array(spans, dtype=np.int64).reshape(-1, 3),
+        np.array(springs, dtype=np.int64).reshape(-1, 3),
+        bnd.astype(np.int64),
+        inner.astype(np.int64),
+    )
 
 
 def _merged(x: NDArray[np.float64], period: float) -> NDArray[np.float64]:
