@@ -326,6 +326,22 @@ def _can_fork() -> bool:
     return switch == "1" or os.getloadavg()[0] <= cpus - 0.5
 
 
+@contextmanager
+def _sigint_held() -> Iterator[None]:
+    """Hold Ctrl-C (SIGINT) back in this thread for the block; a pending one follows it.
+
+    A no-op where signal masks do not exist (Windows, where nothing is forked either).
+    """
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+
+
 def _die_with(parent: int) -> None:
     """In a forked child: be killed when the parent dies (SIGKILL included), or exit now."""
     libc = ctypes.CDLL(None, use_errno=True)
@@ -364,18 +380,31 @@ class Background:
         return self._pid is not None
 
     def _fork(self) -> None:
+        """Fork the child with Ctrl-C held back: the parent alone answers it.
+
+        SIGINT is blocked across the fork; the child ignores it before unblocking (a
+        Ctrl-C reaches the whole foreground group, and one arriving in the child's
+        after-fork hooks printed "Exception ignored ... KeyboardInterrupt"), and the
+        parent unblocks it after the fork, so a Ctrl-C pending there is raised in the
+        parent, which stops the child (:meth:`cancel`, or the child's death signal).
+        """
         read, write = os.pipe()
         parent = os.getpid()
-        with warnings.catch_warnings():
-            # Python >= 3.12 warns at any fork of a process with a second OS thread:
-            # numpy's BLAS keeps an idle pool, which it shuts down around a fork itself
-            warnings.filterwarnings("ignore", "This process .* multi-threaded", DeprecationWarning)
-            pid = os.fork()
-        if pid == 0:  # pragma: no cover - the child (its coverage is not collected)
-            os.close(read)
-            self._child(write, parent)
-        os.close(write)
-        self._pid, self._fd = pid, read
+        with _sigint_held():
+            with warnings.catch_warnings():
+                # Python >= 3.12 warns at any fork of a process with a second OS thread:
+                # numpy's BLAS keeps an idle pool, which it shuts down around a fork itself
+                warnings.filterwarnings(
+                    "ignore", "This process .* multi-threaded", DeprecationWarning
+                )
+                pid = os.fork()
+            if pid == 0:  # pragma: no cover - the child (its coverage is not collected)
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+                signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+                os.close(read)
+                self._child(write, parent)
+            os.close(write)
+            self._pid, self._fd = pid, read
 
     def _child(self, fd: int, parent: int) -> None:  # pragma: no cover - the child
         """Run the function, send its outcome down `fd`, and exit (never returns)."""
@@ -471,8 +500,11 @@ class StagedFolder:
         Background
             The work under way.
         """
-        work = Background(function, *args)
-        self._background.append(work)
+        # Ctrl-C held back until the work is on the list: one raised between the fork
+        # and the append would leave a child writing into a stage being removed
+        with _sigint_held():
+            work = Background(function, *args)
+            self._background.append(work)
         return work
 
     def _cancel(self) -> None:

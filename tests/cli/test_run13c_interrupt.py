@@ -6,6 +6,7 @@ output folder, no staging folder, and no child still running.
 """
 
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -29,11 +30,11 @@ def _children(pid):
         return []
 
 
-@pytest.mark.slow  # a run interrupted while drawing: ~3 s
-def test_ctrl_c_while_the_figures_are_drawn_leaves_nothing(tmp_path):
-    case = tmp_path / "case.toml"
-    case.write_text(CASE)
-    out = tmp_path / "out"
+def _interrupt_while_drawing(case, out):
+    """Start the run, Ctrl-C it (the whole group) once a figure process exists.
+
+    Returns the exit code, stderr and the figure processes' ids.
+    """
     proc = subprocess.Popen(
         [sys.executable, "-m", "railvib.cli.main", "run", str(case), "-o", str(out)],
         stdout=subprocess.DEVNULL,
@@ -53,7 +54,24 @@ def test_ctrl_c_while_the_figures_are_drawn_leaves_nothing(tmp_path):
         except ProcessLookupError:
             pass
     err = proc.communicate(timeout=60)[1].decode()
-    assert proc.returncode == 130, err
+    return proc.returncode, err, kids
+
+
+@pytest.mark.slow  # a run interrupted while drawing: ~3 s
+def test_ctrl_c_while_the_figures_are_drawn_leaves_nothing(tmp_path):
+    case = tmp_path / "case.toml"
+    case.write_text(CASE)
+    out = tmp_path / "out"
+    # on a loaded machine this test may see the figure processes only after the run has
+    # finished drawing (its exit code then 0, its output complete, as it must be): the
+    # interrupt has to land while they draw, so such a try is made again, up to 5 times
+    for _ in range(5):
+        code, err, kids = _interrupt_while_drawing(case, out)
+        if code != 0:
+            break
+        assert (out / "results.nc").exists(), err  # finished first: a complete output
+        shutil.rmtree(out)
+    assert code == 130, err
     assert "Traceback" not in err, err
     assert [line for line in err.splitlines() if line.strip()] == ["aborted"], err
     assert not out.exists()

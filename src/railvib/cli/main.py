@@ -9,39 +9,12 @@ import threading
 import traceback
 import warnings
 from pathlib import Path
-from types import TracebackType
 from typing import Any
 
+import click
 
-def _quiet_interrupt(hook: Any) -> Any:
-    """`hook` (a ``sys.excepthook``) ending an uncaught Ctrl-C with "aborted", exit code 130.
-
-    Ctrl-C while the command line is still importing (before :func:`main` runs) or
-    outside click's handling would otherwise print a KeyboardInterrupt traceback.
-    Nothing has been written then, so the process ends at once.
-    """
-
-    def _hook(kind: type[BaseException], exc: BaseException, tb: TracebackType | None) -> None:
-        if not issubclass(kind, KeyboardInterrupt):
-            hook(kind, exc, tb)
-            return
-        for stream in (sys.stdout, sys.stderr):
-            try:
-                stream.flush()
-            except (OSError, ValueError):
-                pass
-        os.write(2, b"\naborted\n")
-        os._exit(130)
-
-    return _hook
-
-
-sys.excepthook = _quiet_interrupt(sys.excepthook)
-
-import click  # noqa: E402  (after the hook: Ctrl-C during these imports is quiet)
-
-from railvib.cli.options import output_option  # noqa: E402
-from railvib.errors import DamagedOutputWarning, PlausibilityWarning, RailvibError  # noqa: E402
+from railvib.cli.options import output_option
+from railvib.errors import DamagedOutputWarning, PlausibilityWarning, RailvibError
 
 __all__ = ["cli", "main"]
 
