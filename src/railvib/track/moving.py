@@ -249,18 +249,7 @@ def moving_load_receptance(
     f_arr, v, r_arr = _checked(track, f, speed, order, r, tolerance)
     # two harmonics more than asked for, to measure what the order leaves out
     n_orders = np.arange(-order - _EXTRA, order + _EXTRA + 1)
-    if compiled is None:
-        compiled = f_arr.size >= COMPILED_MIN_FREQUENCIES and compiled_available()
-    elif compiled and not compiled_available():
-        raise CaseError(
-            "moving.compiled", compiled, "False where numba is not installed or RAILVIB_COMPILED=0"
-        )
-    if quadrature_tolerance is None:
-        quadrature_tolerance = _PANEL_TOLERANCE
-    if not (np.isfinite(quadrature_tolerance) and 1e-12 <= quadrature_tolerance <= 1e-3):
-        raise CaseError(
-            "moving.quadrature_tolerance", quadrature_tolerance, "between 1e-12 and 1e-3 (-)"
-        )
+    compiled, quadrature_tolerance = _checked_method(f_arr.size, compiled, quadrature_tolerance)
     amplitudes = _harmonics(
         track, f_arr, v, n_orders, r_arr, (bool(compiled), float(quadrature_tolerance))
     )
@@ -461,6 +450,47 @@ def warn_unresolved(f: NDArray[np.float64], left: NDArray[np.float64], stackleve
             SolverWarning,
             stacklevel=stacklevel,
         )
+
+
+def _checked_method(
+    n_freq: int, compiled: bool | None, quadrature_tolerance: float | None
+) -> tuple[bool, float]:
+    """The quadrature's kernel and tolerance, defaults filled in and checked.
+
+    Parameters
+    ----------
+    n_freq : int
+        Number of load frequencies (a count): the compiled kernel is the default from
+        :data:`COMPILED_MIN_FREQUENCIES` on, where numba is available.
+    compiled : bool or None
+        The caller's choice of kernel; None: the default.
+    quadrature_tolerance : float or None
+        The panels' relative tolerance (-); None: the default.
+
+    Returns
+    -------
+    tuple of (bool, float)
+        Whether the compiled kernel runs, and the tolerance.
+
+    Raises
+    ------
+    CaseError
+        ``moving.compiled`` True without numba; ``moving.quadrature_tolerance`` outside
+        1e-12 .. 1e-3.
+    """
+    if compiled is None:
+        compiled = n_freq >= COMPILED_MIN_FREQUENCIES and compiled_available()
+    elif compiled and not compiled_available():
+        raise CaseError(
+            "moving.compiled", compiled, "False where numba is not installed or RAILVIB_COMPILED=0"
+        )
+    if quadrature_tolerance is None:
+        quadrature_tolerance = _PANEL_TOLERANCE
+    if not (np.isfinite(quadrature_tolerance) and 1e-12 <= quadrature_tolerance <= 1e-3):
+        raise CaseError(
+            "moving.quadrature_tolerance", quadrature_tolerance, "between 1e-12 and 1e-3 (-)"
+        )
+    return bool(compiled), float(quadrature_tolerance)
 
 
 def _require_finite(

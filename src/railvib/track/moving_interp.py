@@ -26,13 +26,11 @@ from numpy.typing import ArrayLike, NDArray
 from railvib.errors import CaseError
 from railvib.track.moving import (
     _EXTRA,
-    _PANEL_TOLERANCE,
     _WARN_ERROR,
-    COMPILED_MIN_FREQUENCIES,
     MovingLoadResponse,
     _checked,
+    _checked_method,
     check_harmonic_sizes,
-    compiled_available,
     integrated_harmonics,
     warn_unresolved,
 )
@@ -116,18 +114,7 @@ def interpolated_receptance(
         ``moving.interpolation_tolerance`` out of range.
     """
     f_arr, v, r_arr = _checked(track, f, speed, order, r, tolerance)
-    if compiled is None:
-        compiled = f_arr.size >= COMPILED_MIN_FREQUENCIES and compiled_available()
-    elif compiled and not compiled_available():
-        raise CaseError(
-            "moving.compiled", compiled, "False where numba is not installed or RAILVIB_COMPILED=0"
-        )
-    if quadrature_tolerance is None:
-        quadrature_tolerance = _PANEL_TOLERANCE
-    if not (np.isfinite(quadrature_tolerance) and 1e-12 <= quadrature_tolerance <= 1e-3):
-        raise CaseError(
-            "moving.quadrature_tolerance", quadrature_tolerance, "between 1e-12 and 1e-3 (-)"
-        )
+    compiled, quadrature_tolerance = _checked_method(f_arr.size, compiled, quadrature_tolerance)
     if interpolation_tolerance is None:
         interpolation_tolerance = INTERPOLATION_FACTOR * quadrature_tolerance
     if not (np.isfinite(interpolation_tolerance) and 0.0 < interpolation_tolerance <= 1e-2):
