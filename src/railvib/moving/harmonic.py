@@ -221,11 +221,10 @@ class HarmonicSystem:
         system = np.empty((n_f, size, size), dtype=np.complex128)
         columns = system.reshape(n_f, size, h, n_w).transpose(0, 2, 1, 3)  # (n_f, H, size, n_w)
         np.matmul(rec.transpose(0, 2, 1, 3), self.stiffness, out=columns)
-        diagonal = np.arange(h)
-        system.reshape(n_f, h, n_w, h, n_w)[:, diagonal, :, diagonal, :] += (
-            self.stiffness.transpose(1, 0, 2, 3) / k_h
-        )
-        system[:, np.arange(size), np.arange(size)] += 1.0
+        blocks = system.reshape(n_f, h, n_w, h, n_w)
+        for c in range(h):
+            blocks[:, c, :, c, :] += self.stiffness[:, c] / k_h
+        system.reshape(n_f, size * size)[:, :: size + 1] += 1.0  # the diagonal, a strided view
         rhs = excitation.reshape(n_f, size, -1).astype(np.complex128)
         centre = h // 2
         g = None
