@@ -413,7 +413,8 @@ def harmonic_blocks(
     amp = receptances.signed(freqs.ravel()).reshape(f.size, h, r.size, h)  # [k, m, r, n + N]
     index, phase = _block_layout(n, pair, r.size, 2.0 * np.pi * x / track.sleeper_spacing)
     # R at once in its layout: one gather along each frequency's table row, then the phases
-    rec = amp.reshape(f.size, -1)[:, index]
+    # (np.take: a C-ordered result; amp[:, index] would be Fortran-ordered, slowing solve)
+    rec = np.take(amp.reshape(f.size, -1), index, axis=1)
     rec *= phase
     cond = system.vehicle.condensed_to_wheels(np.abs(freqs.ravel()))
     negative = freqs.ravel() < 0.0
