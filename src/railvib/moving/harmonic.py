@@ -216,15 +216,15 @@ class HarmonicSystem:
         size = h * n_w
         rec = self.receptance.reshape(n_f, size, h, n_w)
         k_h = self.contact_stiffness
-        # (R + I / k_H) S: R S per harmonic column block (batched BLAS products), then
-        # S / k_H on the diagonal blocks and the identity
-        product = np.matmul(rec.transpose(0, 2, 1, 3), self.stiffness)  # (n_f, H, size, n_w)
-        system = product.transpose(0, 2, 1, 3).reshape(n_f, size, size)  # a copy
-        diagonal = np.arange(h)
-        system.reshape(n_f, h, n_w, h, n_w)[:, diagonal, :, diagonal, :] += (
-            self.stiffness.transpose(1, 0, 2, 3) / k_h
-        )
-        system[:, np.arange(size), np.arange(size)] += 1.0
+        # (R + I / k_H) S: R S per harmonic column block (batched products written straight
+        # into the system's layout), then S / k_H on the diagonal blocks and the identity
+        system = np.empty((n_f, size, size), dtype=np.complex128)
+        columns = system.reshape(n_f, size, h, n_w).transpose(0, 2, 1, 3)  # (n_f, H, size, n_w)
+        np.matmul(rec.transpose(0, 2, 1, 3), self.stiffness, out=columns)
+        blocks = system.reshape(n_f, h, n_w, h, n_w)
+        for c in range(h):
+            blocks[:, c, :, c, :] += self.stiffness[:, c] / k_h
+        system.reshape(n_f, size * size)[:, :: size + 1] += 1.0  # the diagonal, a strided view
         rhs = excitation.reshape(n_f, size, -1).astype(np.complex128)
         centre = h // 2
         g = None
@@ -333,6 +333,43 @@ def _wheel_gaps(system: CoupledSystem) -> tuple[NDArray[np.float64], NDArray[np.
     return r, pair.reshape(x.size, x.size)
 
 
+def _block_layout(
+    n: int, pair: NDArray[np.intp], n_r: int, phi: NDArray[np.float64]
+) -> tuple[NDArray[np.intp], NDArray[np.complex128]]:
+    """Where each entry of ``R`` is in a frequency's table row, and its phase factor.
+
+    Parameters
+    ----------
+    n : int
+        Harmonic order N.
+    pair : numpy.ndarray
+        Gap index of each wheel pair, ``(n_w[j], n_w[i])``.
+    n_r : int
+        Number of distinct gaps.
+    phi : numpy.ndarray
+        Sleeper-period phase of each wheel at ``t = 0``, ``2 pi x_i / d``, rad, ``(n_w,)``.
+
+    Returns
+    -------
+    index : numpy.ndarray
+        ``R[q, j, m, i]``'s flat position in the row ``A[m, r_ji, q - m + N]`` of shape
+        ``(2 N + 1, n_r, 2 N + 1)``, ``((2 N + 1) n_w)**2`` flattened (any valid entry
+        outside the band ``|q - m| <= N``).
+    phase : numpy.ndarray
+        ``exp(i (q - m) phi_i)`` inside the band, 0 outside, flattened as `index`.
+    """
+    h, n_w = 2 * n + 1, phi.size
+    q, j, m, i = np.meshgrid(
+        np.arange(h), np.arange(n_w), np.arange(h), np.arange(n_w), indexing="ij"
+    )
+    k = q - m + n
+    band = np.abs(q - m) <= n
+    k = np.where(band, k, 0)
+    index = (m * n_r + pair[j, i]) * h + k
+    phase = np.where(band, np.exp(1j * ((k - n) * phi[i])), 0.0)
+    return index.ravel(), phase.ravel()
+
+
 def harmonic_blocks(
     system: CoupledSystem,
     f: ArrayLike,
@@ -374,14 +411,11 @@ def harmonic_blocks(
     if receptances is None:
         receptances = load_receptances(system, f, settings)
     amp = receptances.signed(freqs.ravel()).reshape(f.size, h, r.size, h)  # [k, m, r, n + N]
-    phase = np.exp(1j * np.outer(orders, 2.0 * np.pi * x / track.sleeper_spacing))  # [n, i]
-    # every block R[q, m] with |q - m| <= N at once: gathered (n_f, n_block, n_w[j], n_w[i])
-    q, m = np.nonzero(np.abs(orders[:, None] - orders[None, :]) <= n)
-    k = q - m + n
-    blocks = amp[:, m[:, None, None], pair[None, :, :], k[:, None, None]]
-    blocks *= phase[k][None, :, None, :]
-    rec = np.zeros((f.size, h, n_w, h, n_w), dtype=np.complex128)
-    rec[:, q, :, m, :] = blocks.transpose(1, 0, 2, 3)  # the block axis leads there
+    index, phase = _block_layout(n, pair, r.size, 2.0 * np.pi * x / track.sleeper_spacing)
+    # R at once in its layout: one gather along each frequency's table row, then the phases
+    # (np.take: a C-ordered result; amp[:, index] would be Fortran-ordered, slowing solve)
+    rec = np.take(amp.reshape(f.size, -1), index, axis=1)
+    rec *= phase
     cond = system.vehicle.condensed_to_wheels(np.abs(freqs.ravel()))
     negative = freqs.ravel() < 0.0
     stiffness, recovery = np.array(cond.stiffness), np.array(cond.recovery)
@@ -392,7 +426,7 @@ def harmonic_blocks(
         f,
         passing,
         orders,
-        rec,
+        rec.reshape(f.size, h, n_w, h, n_w),
         stiffness.reshape(f.size, h, n_w, n_w),
         recovery.reshape(f.size, h, n_dof, n_w),
         system.contact_stiffness,
