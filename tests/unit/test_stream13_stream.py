@@ -49,7 +49,14 @@ def _assert_equal_to_held(held, streamed, p0):
 
 @pytest.mark.slow  # two netCDF files of 799 frequencies: 1-4 s
 @pytest.mark.parametrize("name", ["wang2017_metro", "floating_slab_metro", "wang2017_metro_train6"])
-def test_the_streamed_file_equals_the_held_result(tmp_path, name):
+def test_the_streamed_file_equals_the_held_result(tmp_path, name, monkeypatch):
+    # both on the NumPy kernels: where this worker has loaded the compiled ones, a slab
+    # track runs on the fused slab kernel, whose last bits for a frequency depend on how
+    # the frequencies fall into its batches (the small streamed blocks against the held
+    # run's large one): measured 3.3e-15 relative for floating_slab_metro in a full slow
+    # run, not the bit equality checked here; the compiled rigid-base path's own
+    # equality is tests/unit/test_core13c_glue.py's
+    monkeypatch.setenv("RAILVIB_COMPILED", "0")
     case, system, spectrum = _case(name)
     held = load_netcdf(save_netcdf(run_system(system, GRID, spectrum), tmp_path / "held.nc"))
     small = stream_to_netcdf(system, GRID, spectrum, tmp_path / "results.nc", block=BLOCK)
