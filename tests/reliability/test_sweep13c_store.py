@@ -14,21 +14,7 @@ import xarray as xr
 from railvib.errors import DamagedOutputWarning
 from railvib.sweep import ChunkStore, run_sweep, sweep_from_dict
 from railvib.sweep import runner as runner_mod
-from tests.unit.sweep.sweep_cases import small_sweep
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _one_kernel():
-    """Every sweep of this module on the NumPy kernels, so that reruns compare bit for bit.
-
-    A chunk computed in this process takes the compiled kernels only where they are loaded
-    (``railvib.track.compiled``), which depends on the tests this worker ran before; the
-    two paths agree to ~1e-13, not to the bit that these tests' ``assert_identical`` checks
-    (seen at the lower bounds: a recomputed chunk differing from the module's reference).
-    """
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("RAILVIB_COMPILED", "0")
-        yield
+from tests.unit.sweep.sweep_cases import assert_recomputed, small_sweep
 
 
 def _tiny():
@@ -79,7 +65,7 @@ def test_a_region_written_without_its_record_is_computed_again(finished, tmp_pat
     (store.work_path / "psd_acceleration" / "0.0.1").write_bytes(b"half a region")
     ds = run_sweep(spec, out, workers=1, progress=False)  # no warning: chunk 1 is not done
     assert computed == [1]
-    xr.testing.assert_identical(ds, reference)
+    assert_recomputed(ds, reference)
     assert not store.work_path.exists()
 
 
@@ -118,4 +104,4 @@ def test_a_deleted_store_is_computed_again_whole(finished, tmp_path, computed):
     assert sorted(p.name for p in (out / "chunks").iterdir()) == [
         f"chunk-00000{i}.done" for i in range(3)
     ]
-    xr.testing.assert_identical(ds, reference)
+    assert_recomputed(ds, reference)

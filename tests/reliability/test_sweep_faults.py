@@ -27,21 +27,7 @@ from railvib.cli.main import main
 from railvib.errors import DamagedOutputWarning
 from railvib.sweep import ChunkStore, SweepMismatchError, load_sweep, run_sweep, sweep_from_dict
 from railvib.sweep import runner as runner_mod
-from tests.unit.sweep.sweep_cases import BASE_CASE, small_sweep
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _one_kernel():
-    """Every sweep of this module on the NumPy kernels, so that reruns compare bit for bit.
-
-    A chunk computed in this process takes the compiled kernels only where they are loaded
-    (``railvib.track.compiled``), which depends on the tests this worker ran before; the
-    two paths agree to ~1e-13, not to the bit that these tests' ``assert_identical`` checks
-    (seen at the lower bounds: a recomputed chunk differing from the module's reference).
-    """
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("RAILVIB_COMPILED", "0")
-        yield
+from tests.unit.sweep.sweep_cases import BASE_CASE, assert_recomputed, small_sweep
 
 
 def _tiny(**over):
@@ -161,7 +147,7 @@ def test_damaged_chunk_is_named_and_computed_again(
     rewritten = {k for k, t in now.items() if regions.get(k) != t}
     assert rewritten, "chunk 1 is written again"
     assert all(k.endswith("1") for k in rewritten), rewritten  # chunk 1's files only
-    xr.testing.assert_identical(ds, reference)  # the same function on the same chunk
+    assert_recomputed(ds, reference)  # the same function on the same chunk
 
 
 @pytest.mark.filterwarnings("default::railvib.errors.DamagedOutputWarning")

@@ -2,6 +2,8 @@
 
 import copy
 
+import xarray as xr
+
 #: a temperature-dependent pad, so that pad_temperature_c changes the track
 TTS_PAD = {
     "model": "fractional_zener",
@@ -33,3 +35,17 @@ def small_sweep(**over):
     }
     d.update(over)
     return d
+
+
+def assert_recomputed(ds, reference):
+    """A recomputed sweep equals the reference to rounding.
+
+    Not to the bit: a chunk computed again may differ from its first computation in the
+    last bits (measured at most ~3e-15 relative), as seen at the CI's lower bounds (numpy
+    2.0, numba 0.60): a chunk takes the compiled kernels only where this worker has loaded
+    them, and reductions may round differently from one allocation to the next. 1e-12 is
+    300x that, and far below any change of the function computed.
+    """
+    xr.testing.assert_allclose(ds, reference, rtol=1e-12, atol=0.0)
+    xr.testing.assert_identical(ds.coords.to_dataset(), reference.coords.to_dataset())
+    assert ds.attrs == reference.attrs
